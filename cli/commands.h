@@ -1,0 +1,17 @@
+// Every subcommand registers itself through one function here; main.cpp wires them.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include "cli/common_options.h"
+
+namespace hitl::cli {
+
+/// Set by a subcommand's callback; main returns it.
+struct RunState {
+  int exit_code = kExitOk;
+};
+
+void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state);
+
+}  // namespace hitl::cli

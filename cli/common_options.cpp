@@ -1,0 +1,78 @@
+#include "cli/common_options.h"
+
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+#include "engine/mavlink/dialect_xml.h"
+
+namespace hitl::cli {
+
+void add_global_options(CLI::App& app, GlobalOptions& options) {
+  app.add_flag("--json", options.json, "Machine output: one JSON object per line, a final summary object last")
+      ->group("Output");
+  app.add_flag("-v,--verbose", options.verbosity, "More detail on stderr (repeat for more)")->group("Output");
+  app.add_flag("-q,--quiet", options.quiet, "Print results only, no progress")->group("Output");
+  app.add_option("--dialect", options.dialects,
+                 "MAVLink XML to load at run time (with its includes), e.g. ardupilotmega.xml; also "
+                 "$HITL_MAVLINK_DIALECT (':'-separated)")
+      ->group("MAVLink")
+      ->type_name("FILE.xml");
+  app.set_config("--config", "", "Read options from a TOML file ([inspect] port = 14570, ...)")->group("Config");
+}
+
+Expected<mavlink::MessageSet> load_messages(const GlobalOptions& options) {
+  auto set = mavlink::MessageSet::compiled();
+  std::vector<std::string> files;
+  if (const char* env = std::getenv(mavlink::kDialectEnvVar); env != nullptr && *env != '\0') {
+    std::stringstream ss(env);
+    std::string item;
+    while (std::getline(ss, item, ':'))
+      if (!item.empty()) files.push_back(item);
+  }
+  files.insert(files.end(), options.dialects.begin(), options.dialects.end());
+  for (const auto& file : files) {
+    auto info = mavlink::load_dialect(file, set);
+    if (!info) return Error{"--dialect: " + info.error().message};
+  }
+  return set;
+}
+
+void print_json_line(const nlohmann::json& object) {
+  std::cout << object.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n' << std::flush;
+}
+
+void log_info(const GlobalOptions& options, const std::string& line) {
+  if (!options.quiet) std::cerr << line << '\n';
+}
+
+void log_error(const std::string& command, const std::string& message) {
+  std::cerr << "hitl " << command << ": " << message << '\n';
+}
+
+namespace {
+std::atomic<bool>& stop_storage() {
+  static std::atomic<bool> stop{false};
+  return stop;
+}
+extern "C" void on_stop_signal(int sig) {
+  stop_storage().store(true);
+  std::signal(sig, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+}  // namespace
+
+const std::atomic<bool>& stop_flag_on_signals() {
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  return stop_storage();
+}
+
+bool stdout_is_tty() { return ::isatty(STDOUT_FILENO) == 1; }
+
+}  // namespace hitl::cli

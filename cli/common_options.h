@@ -1,0 +1,47 @@
+// Options every subcommand shares, and the helpers that turn engine results into output.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "engine/common/expected.h"
+#include "engine/mavlink/message_set.h"
+
+namespace hitl::cli {
+
+/// Exit codes (DESIGN.md): 0 success, 1 a check or command failed, 2 bad usage or input.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailed = 1;
+inline constexpr int kExitUsage = 2;
+
+struct GlobalOptions {
+  bool json = false;                   ///< --json: JSON lines on stdout, a final summary object last
+  int verbosity = 0;                   ///< -v (repeatable)
+  bool quiet = false;                  ///< -q: results only
+  std::vector<std::string> dialects;   ///< --dialect FILE.xml (repeatable), plus $HITL_MAVLINK_DIALECT
+};
+
+/// Adds --json, -v/--verbose, -q/--quiet, --dialect and --config to the top-level app.
+void add_global_options(CLI::App& app, GlobalOptions& options);
+
+/// The compiled-in messages plus every dialect from --dialect and $HITL_MAVLINK_DIALECT.
+Expected<mavlink::MessageSet> load_messages(const GlobalOptions& options);
+
+/// One JSON object on one line of stdout, flushed; invalid UTF-8 from the network is replaced.
+void print_json_line(const nlohmann::json& object);
+
+/// A line on stderr for progress and diagnostics, unless --quiet.
+void log_info(const GlobalOptions& options, const std::string& line);
+/// An error line on stderr: "hitl <cmd>: <message>".
+void log_error(const std::string& command, const std::string& message);
+
+/// Installs SIGINT/SIGTERM handlers; the flag turns true on the first signal (a second one kills).
+const std::atomic<bool>& stop_flag_on_signals();
+
+bool stdout_is_tty();
+
+}  // namespace hitl::cli

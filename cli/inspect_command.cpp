@@ -1,0 +1,286 @@
+// hitl inspect: decode and measure MAVLink on a port, a connection or a .tlog.
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "cli/commands.h"
+#include "engine/mavlink/enums.h"
+#include "cli/traffic_table.h"
+#include "engine/inspect/expectations.h"
+#include "engine/inspect/inspector.h"
+#include "engine/mavlink/field_format.h"
+#include "engine/telemetry/traffic_json.h"
+
+namespace hitl::cli {
+namespace {
+
+struct InspectOptions {
+  std::optional<uint16_t> port;
+  std::string connect;
+  std::string tlog;
+  std::string bind = "0.0.0.0";
+  uint16_t local_port = 14562;
+  std::string record;
+  std::vector<std::string> show;
+  bool follow = false;
+  double duration_s = 0;
+  uint64_t count = 0;
+  std::string expect;
+  double tolerance_pct = 5.0;
+  int sysid = mavlink::kGcsSystemId;
+  int compid = mavlink::kCompIdMissionPlanner;
+  std::string signing_key;
+  bool require_signed = false;
+};
+
+nlohmann::json frame_json(const mavlink::Frame& f, const std::string& source, int64_t t_ns) {
+  return {{"type", "frame"},
+          {"t_unix_us", t_ns / 1000},
+          {"source", source},
+          {"name", f.desc ? f.desc->name : "#" + std::to_string(f.msgid)},
+          {"id", f.msgid},
+          {"sysid", f.sysid},
+          {"compid", f.compid},
+          {"seq", f.seq},
+          {"fields", mavlink::fields_to_json(f)}};
+}
+
+/// Turns what the inspector reports into text or JSON lines.
+class InspectPrinter : public inspect::Inspector::Observer {
+ public:
+  InspectPrinter(const GlobalOptions& global, const InspectOptions& options, std::vector<uint32_t> show_ids)
+      : global_(global), options_(options), show_ids_(std::move(show_ids)), live_table_(stdout_is_tty() && !options.follow) {}
+
+  void on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns) override {
+    if (!shown(frame.msgid)) return;
+    if (options_.follow) {
+      if (global_.json) print_json_line(frame_json(frame, source, t_ns));
+      else std::cout << mavlink::format_message(frame) << '\n';
+      return;
+    }
+    latest_[frame.msgid] = {mavlink::format_message(frame), frame_json(frame, source, t_ns)};
+  }
+
+  void on_tick(const telemetry::TrafficSummary& summary) override {
+    if (global_.json) {
+      auto j = telemetry::to_json(summary);
+      j["type"] = "summary";
+      add_latest(j);
+      print_json_line(j);
+    } else if (global_.quiet) {
+      return;
+    } else if (live_table_) {
+      std::cout << "\x1b[H\x1b[J" << traffic_table(summary) << latest_text() << std::flush;
+    } else if (options_.follow) {
+      std::cerr << traffic_line(summary) << '\n';
+    } else {
+      std::cout << traffic_line(summary) << '\n' << std::flush;
+    }
+  }
+
+  void add_latest(nlohmann::json& j) const {
+    if (show_ids_.empty() || options_.follow) return;
+    nlohmann::json latest = nlohmann::json::object();
+    for (const auto& [id, text_and_json] : latest_) latest[text_and_json.second["name"].get<std::string>()] = text_and_json.second;
+    j["latest"] = std::move(latest);
+  }
+
+  std::string latest_text() const {
+    std::string out;
+    for (const auto& [id, text_and_json] : latest_) out += text_and_json.first + "\n";
+    return out.empty() ? out : "\n" + out;
+  }
+
+ private:
+  bool shown(uint32_t id) const {
+    return std::find(show_ids_.begin(), show_ids_.end(), id) != show_ids_.end();
+  }
+
+  const GlobalOptions& global_;
+  const InspectOptions& options_;
+  std::vector<uint32_t> show_ids_;
+  bool live_table_;
+  std::map<uint32_t, std::pair<std::string, nlohmann::json>> latest_;
+};
+
+const char* end_reason_name(inspect::Inspector::EndReason reason) {
+  switch (reason) {
+    case inspect::Inspector::EndReason::Duration: return "duration";
+    case inspect::Inspector::EndReason::Count: return "count";
+    case inspect::Inspector::EndReason::EndOfLog: return "end_of_log";
+    case inspect::Inspector::EndReason::Stopped: return "stopped";
+  }
+  return "?";
+}
+
+int run_inspect(const GlobalOptions& global, const InspectOptions& opt) {
+  const std::string cmd = "inspect";
+  const int sources = (opt.port ? 1 : 0) + (opt.connect.empty() ? 0 : 1) + (opt.tlog.empty() ? 0 : 1);
+  if (sources != 1) {
+    log_error(cmd, "give exactly one source: --port P, --connect HOST:PORT or --tlog FILE");
+    return kExitUsage;
+  }
+  auto messages = load_messages(global);
+  if (!messages) {
+    log_error(cmd, messages.error().message);
+    return kExitUsage;
+  }
+  std::vector<uint32_t> show_ids;
+  for (const auto& name : opt.show) {
+    const auto* desc = messages->lookup(name);
+    if (desc == nullptr) {
+      log_error(cmd, "--show: unknown message '" + name + "' (load its dialect with --dialect FILE.xml)");
+      return kExitUsage;
+    }
+    show_ids.push_back(desc->id);
+  }
+  std::vector<inspect::Expectation> expectations;
+  if (!opt.expect.empty()) {
+    auto parsed = inspect::parse_expectations(opt.expect, *messages);
+    if (!parsed) {
+      log_error(cmd, parsed.error().message);
+      return kExitUsage;
+    }
+    expectations = std::move(parsed.value());
+  }
+
+  inspect::InspectConfig config;
+  if (opt.port) {
+    config.source = inspect::InspectConfig::Source::Port;
+    config.port = *opt.port;
+  } else if (!opt.connect.empty()) {
+    config.source = inspect::InspectConfig::Source::Connect;
+    config.connect = opt.connect;
+  } else {
+    config.source = inspect::InspectConfig::Source::Tlog;
+    config.tlog_path = opt.tlog;
+  }
+  config.bind_address = opt.bind;
+  config.local_port = opt.local_port;
+  config.record_path = opt.record;
+  config.duration_s = opt.duration_s;
+  config.count = opt.count;
+  config.count_ids = show_ids;
+  config.sysid = static_cast<uint8_t>(opt.sysid);
+  config.compid = static_cast<uint8_t>(opt.compid);
+  if (!opt.signing_key.empty()) {
+    auto key = mavlink::parse_signing_key(opt.signing_key);
+    if (!key) {
+      log_error(cmd, "--signing-key: " + key.error().message);
+      return kExitUsage;
+    }
+    config.parser.signing_key = *key;
+    config.parser.accept_unsigned = !opt.require_signed;
+  }
+
+  auto inspector = inspect::Inspector::open(config, *messages);
+  if (!inspector) {
+    log_error(cmd, inspector.error().message);
+    return kExitUsage;
+  }
+  const auto& stop = stop_flag_on_signals();
+  const char* verb = opt.port ? "listening on " : (opt.connect.empty() ? "reading " : "connected to ");
+  log_info(global, "hitl inspect: " + std::string(verb) + (*inspector)->where() +
+                       (opt.record.empty() ? "" : ", recording to " + opt.record) + " (Ctrl-C for the summary)");
+
+  InspectPrinter printer(global, opt, show_ids);
+  auto end = (*inspector)->run(stop, printer);
+  if (!end) {
+    log_error(cmd, end.error().message);
+    return kExitFailed;
+  }
+  const auto summary = (*inspector)->summary();
+  const auto results = inspect::check_expectations(summary, expectations, opt.tolerance_pct);
+  bool ok = true;
+  for (const auto& r : results) ok = ok && r.ok;
+  if ((*inspector)->record_failed()) {
+    log_error(cmd, "--record: writing '" + opt.record + "' failed (disk full?); the recording is incomplete");
+    ok = false;
+  }
+
+  if (global.json) {
+    auto j = telemetry::to_json(summary);
+    j["type"] = "final";
+    j["end"] = end_reason_name(*end);
+    printer.add_latest(j);
+    if (!expectations.empty()) {
+      nlohmann::json arr = nlohmann::json::array();
+      for (const auto& r : results)
+        arr.push_back({{"name", r.expected.name},
+                       {"expected_hz", r.expected.rate_hz},
+                       {"measured_hz", r.measured_hz},
+                       {"low_hz", r.low_hz},
+                       {"high_hz", r.high_hz},
+                       {"ok", r.ok}});
+      j["expect"] = std::move(arr);
+    }
+    j["ok"] = ok;
+    print_json_line(j);
+  } else {
+    std::cout << (stdout_is_tty() && !opt.follow ? "\x1b[H\x1b[J" : "\n") << traffic_table(summary)
+              << printer.latest_text();
+    for (const auto& r : results) std::cout << (r.ok ? "PASS " : "FAIL ") << r.verdict << '\n';
+    std::cout << std::flush;
+  }
+  return ok ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state) {
+  auto opt = std::make_shared<InspectOptions>();
+  auto* sub = app.add_subcommand("inspect", "Decode and measure MAVLink on a UDP port, a connection or a .tlog");
+  sub->footer(
+      "Examples:\n"
+      "  hitl inspect --port 14570 --duration 5 --expect ODOMETRY=250   # the spec's Phase 1 check\n"
+      "  hitl inspect --connect 192.168.101.2:14558 --show HEARTBEAT,ATTITUDE\n"
+      "  hitl inspect --tlog flight.tlog --json\n"
+      "Exit: 0 ok (every --expect met), 1 an expectation failed, 2 bad usage or the source cannot be opened.");
+  auto* src = sub->add_option_group("Source", "exactly one of --port, --connect, --tlog");
+  src->add_option("--port", opt->port, "Listen passively on this UDP port (e.g. 14570 for ODOMETRY)")
+      ->check(CLI::Range(1, 65535));
+  src->add_option("--connect", opt->connect,
+                  "Talk to a MAVLink instance at HOST:PORT, sending HEARTBEAT at 1 Hz so it streams to us")
+      ->type_name("HOST:PORT");
+  src->add_option("--tlog", opt->tlog, "Read a telemetry log offline, as fast as it reads")->check(CLI::ExistingFile);
+  src->require_option(1);
+  sub->add_option("--bind", opt->bind, "Address to listen on with --port")->capture_default_str()->group("Connection");
+  sub->add_option("--local-port", opt->local_port,
+                  "Local UDP port for --connect; fixed, since PX4 answers only the first port it heard")
+      ->capture_default_str()
+      ->group("Connection");
+  sub->add_option("--record", opt->record, "Save every frame received to a .tlog")->type_name("FILE.tlog");
+  sub->add_option("--show", opt->show, "Print decoded fields of these messages (latest, or each with --follow)")
+      ->delimiter(',')
+      ->type_name("NAME[,NAME]");
+  sub->add_flag("--follow", opt->follow, "With --show: print every matching message as it arrives");
+  sub->add_option("--duration", opt->duration_s, "Stop after this many seconds (tlog: of log time)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("S");
+  sub->add_option("--count", opt->count, "Stop after N messages (of the --show names when given)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("N");
+  sub->add_option("--expect", opt->expect, "Rates the link must carry; exit 1 when one falls outside the tolerance")
+      ->type_name("NAME=HZ[,NAME=HZ]");
+  sub->add_option("--tolerance", opt->tolerance_pct, "Accepted deviation from each --expect rate, percent")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0))
+      ->type_name("PCT");
+  sub->add_option("--sysid", opt->sysid, "System id of our HEARTBEAT with --connect")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 255))
+      ->group("Identity");
+  sub->add_option("--compid", opt->compid, "Component id of our HEARTBEAT with --connect")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 255))
+      ->group("Identity");
+  sub->add_option("--signing-key", opt->signing_key,
+                  "Verify MAVLink 2 signatures with this key (64 hex digits, or a passphrase hashed with SHA-256)")
+      ->group("Signing");
+  sub->add_flag("--require-signed", opt->require_signed, "With --signing-key: reject unsigned frames")
+      ->group("Signing");
+  sub->callback([&options, &state, opt]() { state.exit_code = run_inspect(options, *opt); });
+}
+
+}  // namespace hitl::cli

@@ -1,0 +1,41 @@
+// hitl: hardware-in-the-loop simulation and diagnostics for PX4 on a VOXL2 / M0197.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/common_options.h"
+#include "cli/version.h"
+
+int main(int argc, char** argv) {
+  using namespace hitl::cli;
+  CLI::App app{
+      "hitl: run and diagnose hardware-in-the-loop simulation of a PX4 x500 whose flight stack runs on a "
+      "ModalAI VOXL2 / M0197 board.",
+      "hitl"};
+  app.set_version_flag("--version", std::string("hitl ") + kVersion);
+  app.require_subcommand(1);
+  app.fallthrough();
+  app.footer(
+      "Exit codes: 0 success, 1 a check or command failed, 2 bad usage or input.\n"
+      "Run `hitl COMMAND --help` for a command's options.");
+
+  GlobalOptions options;
+  RunState state;
+  add_global_options(app, options);
+  add_inspect_command(app, options, state);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitUsage;
+  }
+  return state.exit_code;
+}

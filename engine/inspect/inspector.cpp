@@ -1,0 +1,170 @@
+#include "engine/inspect/inspector.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "engine/mavlink/enums.h"
+#include "engine/mavlink/messages.h"
+
+namespace hitl::inspect {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int64_t wall_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+Inspector::Inspector(const InspectConfig& config, const mavlink::MessageSet& messages)
+    : config_(config), parser_(messages, config.parser), encoder_(config.sysid, config.compid) {}
+
+Expected<std::unique_ptr<Inspector>> Inspector::open(const InspectConfig& config, const mavlink::MessageSet& messages) {
+  std::unique_ptr<Inspector> in(new Inspector(config, messages));
+  switch (config.source) {
+    case InspectConfig::Source::Port: {
+      net::UdpEndpoint::Config ec;
+      ec.name = "--port";
+      ec.bind_address = config.bind_address;
+      ec.bind_port = config.port;
+      ec.policy = net::PartnerPolicy::LastSender;
+      auto ep = net::UdpEndpoint::open(ec);
+      if (!ep) return ep.error();
+      in->endpoint_.emplace(std::move(ep.value()));
+      break;
+    }
+    case InspectConfig::Source::Connect: {
+      auto peer = net::SocketAddress::parse(config.connect, "--connect");
+      if (!peer) return peer.error();
+      net::UdpEndpoint::Config ec;
+      ec.name = "--connect";
+      ec.bind_address = peer->family() == AF_INET6 ? "::" : "0.0.0.0";
+      ec.bind_port = config.local_port;
+      ec.peer = *peer;
+      ec.policy = net::PartnerPolicy::Fixed;
+      auto ep = net::UdpEndpoint::open(ec);
+      if (!ep) return Error{ep.error().message + " (is another hitl command talking to the board? run `hitl bridge`)"};
+      in->endpoint_.emplace(std::move(ep.value()));
+      break;
+    }
+    case InspectConfig::Source::Tlog: {
+      auto reader = mavlink::TlogReader::open(config.tlog_path);
+      if (!reader) return reader.error();
+      in->reader_.emplace(std::move(reader.value()));
+      break;
+    }
+  }
+  if (!config.record_path.empty()) {
+    auto writer = mavlink::TlogWriter::open(config.record_path);
+    if (!writer) return writer.error();
+    in->recorder_.emplace(std::move(writer.value()));
+  }
+  return in;
+}
+
+std::string Inspector::where() const {
+  switch (config_.source) {
+    case InspectConfig::Source::Port: return endpoint_->local_address().to_string();
+    case InspectConfig::Source::Connect:
+      return endpoint_->partner()->to_string() + " from " + endpoint_->local_address().to_string();
+    case InspectConfig::Source::Tlog: return config_.tlog_path;
+  }
+  return "";
+}
+
+void Inspector::handle(const mavlink::Frame& frame, const std::string& source, int64_t t_ns, Observer& observer) {
+  if (counted_out()) return;
+  stats_.on_frame(frame, source, t_ns);
+  if (recorder_) recorder_->write(static_cast<uint64_t>(t_ns / 1000), frame.bytes());
+  if (config_.count > 0 &&
+      (config_.count_ids.empty() ||
+       std::find(config_.count_ids.begin(), config_.count_ids.end(), frame.msgid) != config_.count_ids.end()))
+    ++counted_;
+  observer.on_frame(frame, source, t_ns);
+}
+
+void Inspector::send_heartbeat() {
+  mavlink::msg::Heartbeat hb;
+  hb.type = static_cast<uint8_t>(mavlink::MavType::Gcs);
+  hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
+  hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
+  hb.mavlink_version = mavlink::kMavlinkVersion;
+  mavlink::FrameBuffer buf;
+  const std::size_t n = encoder_.encode(hb, buf);
+  (void)endpoint_->send({buf.data(), n});  // an unreachable board shows as silence, not as an error
+}
+
+telemetry::TrafficSummary Inspector::summary() const { return stats_.summary(now_ns_, parser_.stats()); }
+
+Expected<Inspector::EndReason> Inspector::run(const std::atomic<bool>& stop, Observer& observer) {
+  auto result = config_.source == InspectConfig::Source::Tlog ? run_tlog(stop, observer) : run_live(stop, observer);
+  if (recorder_) recorder_->flush();
+  return result;
+}
+
+Expected<Inspector::EndReason> Inspector::run_live(const std::atomic<bool>& stop, Observer& observer) {
+  now_ns_ = wall_now_ns();
+  stats_.restart(now_ns_);
+  const auto start = Clock::now();
+  auto next_tick = start + std::chrono::seconds(1);
+  const auto deadline = config_.duration_s > 0
+                            ? start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.duration_s))
+                            : Clock::time_point::max();
+  const bool connect = config_.source == InspectConfig::Source::Connect;
+  if (connect) send_heartbeat();
+  while (!stop.load()) {
+    const auto now = Clock::now();
+    const auto until = std::min({next_tick, deadline, now + std::chrono::milliseconds(200)});
+    const auto wait_ms = std::max<int64_t>(0, std::chrono::duration_cast<std::chrono::milliseconds>(until - now).count());
+    if (endpoint_->wait_readable(static_cast<int>(wait_ms))) {
+      while (auto d = endpoint_->receive()) {
+        stats_.on_datagram();
+        const std::string source = d->from.to_string();
+        const int64_t t = d->rx_time_unix_ns;
+        parser_.parse_datagram(d->bytes, [&](const mavlink::Frame& f) { handle(f, source, t, observer); });
+        if (counted_out()) break;
+      }
+    }
+    now_ns_ = wall_now_ns();
+    if (counted_out()) return EndReason::Count;
+    const auto after = Clock::now();
+    if (after >= deadline) return EndReason::Duration;
+    if (after >= next_tick) {
+      next_tick += std::chrono::seconds(1);
+      if (connect) send_heartbeat();
+      stats_.roll(now_ns_);
+      observer.on_tick(summary());
+    }
+  }
+  now_ns_ = wall_now_ns();
+  return EndReason::Stopped;
+}
+
+Expected<Inspector::EndReason> Inspector::run_tlog(const std::atomic<bool>& stop, Observer& observer) {
+  mavlink::TlogRecord rec;
+  bool started = false;
+  int64_t end_ns = 0;
+  auto next_tick = Clock::now() + std::chrono::seconds(1);
+  while (!stop.load()) {
+    if (!reader_->next(rec)) return EndReason::EndOfLog;
+    const int64_t t = static_cast<int64_t>(rec.time_unix_us) * 1000;
+    if (!started) {
+      started = true;
+      stats_.restart(t);
+      end_ns = config_.duration_s > 0 ? t + static_cast<int64_t>(config_.duration_s * 1e9) : INT64_MAX;
+    }
+    if (t > end_ns) return EndReason::Duration;
+    now_ns_ = std::max(now_ns_, t);
+    stats_.on_datagram();
+    parser_.parse_datagram(rec.frame, [&](const mavlink::Frame& f) { handle(f, "tlog", t, observer); });
+    if (counted_out()) return EndReason::Count;
+    if (Clock::now() >= next_tick) {
+      next_tick += std::chrono::seconds(1);
+      observer.on_tick(summary());
+    }
+  }
+  return EndReason::Stopped;
+}
+
+}  // namespace hitl::inspect

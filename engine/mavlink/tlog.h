@@ -1,0 +1,66 @@
+// Telemetry logs as MAVProxy and QGroundControl write them: each frame preceded by
+// an 8-byte big-endian timestamp in microseconds since the Unix epoch.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/common/expected.h"
+
+namespace hitl::mavlink {
+
+class TlogWriter {
+ public:
+  static Expected<TlogWriter> open(const std::string& path);
+  /// Appends one frame; returns false (and stays failed) on a write error.
+  bool write(uint64_t time_unix_us, std::span<const uint8_t> frame);
+  bool flush();
+  bool ok() const { return ok_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Closer {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+  };
+  std::unique_ptr<std::FILE, Closer> file_;
+  std::string path_;
+  bool ok_ = true;
+};
+
+struct TlogRecord {
+  uint64_t time_unix_us = 0;
+  std::vector<uint8_t> frame;  ///< one MAVLink frame's bytes
+};
+
+struct TlogStats {
+  uint64_t records = 0;
+  uint64_t skipped_bytes = 0;  ///< bytes that did not form a timestamp + frame (corruption)
+};
+
+class TlogReader {
+ public:
+  static Expected<TlogReader> open(const std::string& path);
+  /// Reads the next record; false at the end of the file.
+  bool next(TlogRecord& record);
+  const TlogStats& stats() const { return stats_; }
+
+ private:
+  bool fill(std::size_t need);
+  struct Closer {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+  };
+  std::unique_ptr<std::FILE, Closer> file_;
+  std::vector<uint8_t> buf_;
+  std::size_t pos_ = 0;
+  bool eof_ = false;
+  TlogStats stats_;
+};
+
+/// Length of the frame starting at `bytes` (v1 or v2) from its header, or 0 if it does not start with STX.
+std::size_t frame_length_from_header(std::span<const uint8_t> bytes);
+
+}  // namespace hitl::mavlink

@@ -1,0 +1,183 @@
+#include "engine/net/udp_endpoint.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+namespace hitl::net {
+namespace {
+
+std::string bind_hint(int err, const std::string& where) {
+  switch (err) {
+    case EADDRINUSE:
+      return "address already in use: another process is bound there (find it with: ss -ulpn 'sport = :" +
+             where.substr(where.rfind(':') + 1) + "')";
+    case EADDRNOTAVAIL: return "that address is not on any interface of this machine";
+    case EACCES: return "permission denied (ports below 1024 need privileges)";
+    default: return std::strerror(err);
+  }
+}
+
+int64_t realtime_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+Expected<UdpEndpoint> UdpEndpoint::open(const Config& config) {
+  auto bind_addr = SocketAddress::resolve(config.bind_address, config.bind_port);
+  if (!bind_addr) return Error{config.name + ": bad bind address '" + config.bind_address + "': " + bind_addr.error().message};
+  const int fd = ::socket(bind_addr->family(), SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0) return Error{config.name + ": cannot create a UDP socket: " + std::strerror(errno)};
+  const int on = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
+  const int buf_bytes = 1 << 20;
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &buf_bytes, sizeof buf_bytes);
+  if (::bind(fd, bind_addr->get(), bind_addr->length()) != 0) {
+    const int err = errno;
+    ::close(fd);
+    const std::string where = bind_addr->to_string();
+    return Error{config.name + ": cannot bind UDP " + where + ": " + bind_hint(err, where)};
+  }
+  sockaddr_storage local{};
+  socklen_t len = sizeof local;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &len);
+  return UdpEndpoint(fd, config, SocketAddress(reinterpret_cast<sockaddr*>(&local), len));
+}
+
+UdpEndpoint::UdpEndpoint(int fd, Config config, SocketAddress local)
+    : fd_(fd), config_(std::move(config)), local_(local), partner_(config_.peer), rx_buffer_(65536) {}
+
+UdpEndpoint::UdpEndpoint(UdpEndpoint&& other) noexcept
+    : fd_(other.fd_),
+      config_(std::move(other.config_)),
+      local_(other.local_),
+      partner_(other.partner_),
+      locked_(other.locked_),
+      stats_(other.stats_),
+      rx_buffer_(std::move(other.rx_buffer_)),
+      tx_batch_(std::move(other.tx_batch_)) {
+  other.fd_ = -1;
+}
+
+UdpEndpoint& UdpEndpoint::operator=(UdpEndpoint&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = other.fd_;
+    other.fd_ = -1;
+    config_ = std::move(other.config_);
+    local_ = other.local_;
+    partner_ = other.partner_;
+    locked_ = other.locked_;
+    stats_ = other.stats_;
+    rx_buffer_ = std::move(other.rx_buffer_);
+    tx_batch_ = std::move(other.tx_batch_);
+  }
+  return *this;
+}
+
+UdpEndpoint::~UdpEndpoint() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void UdpEndpoint::learn(const SocketAddress& from) {
+  switch (config_.policy) {
+    case PartnerPolicy::Fixed: return;
+    case PartnerPolicy::LastSender:
+      if (!partner_ || *partner_ != from) {
+        partner_ = from;
+        ++stats_.partner_changes;
+      }
+      return;
+    case PartnerPolicy::FirstSender:
+      if (!locked_) {
+        partner_ = from;
+        locked_ = true;
+        ++stats_.partner_changes;
+      }
+      return;
+  }
+}
+
+std::optional<Datagram> UdpEndpoint::receive() {
+  sockaddr_storage from{};
+  iovec iov{rx_buffer_.data(), rx_buffer_.size()};
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timespec))];
+  msghdr msg{};
+  msg.msg_name = &from;
+  msg.msg_namelen = sizeof from;
+  msg.msg_iov = &iov;
+  msg.msg_iovlen = 1;
+  msg.msg_control = control;
+  msg.msg_controllen = sizeof control;
+  for (;;) {
+    const ssize_t n = ::recvmsg(fd_, &msg, MSG_DONTWAIT);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      // EAGAIN: nothing waiting. ECONNREFUSED: an ICMP port-unreachable for an earlier send; not data.
+      if (errno == ECONNREFUSED) continue;
+      return std::nullopt;
+    }
+    Datagram d;
+    d.bytes = std::span<const uint8_t>(rx_buffer_.data(), static_cast<std::size_t>(n));
+    d.from = SocketAddress(reinterpret_cast<sockaddr*>(&from), msg.msg_namelen);
+    d.rx_time_unix_ns = 0;
+    for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c)) {
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
+        timespec ts{};
+        std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
+        d.rx_time_unix_ns = int64_t{ts.tv_sec} * 1000000000 + ts.tv_nsec;
+      }
+    }
+    if (d.rx_time_unix_ns == 0) d.rx_time_unix_ns = realtime_now_ns();
+    ++stats_.datagrams_in;
+    stats_.bytes_in += static_cast<uint64_t>(n);
+    learn(d.from);
+    return d;
+  }
+}
+
+bool UdpEndpoint::wait_readable(int timeout_ms) const {
+  pollfd p{fd_, POLLIN, 0};
+  return ::poll(&p, 1, timeout_ms) > 0 && (p.revents & POLLIN);
+}
+
+Status UdpEndpoint::send_to(const SocketAddress& to, std::span<const uint8_t> bytes) {
+  for (;;) {
+    const ssize_t n = ::sendto(fd_, bytes.data(), bytes.size(), MSG_DONTWAIT | MSG_NOSIGNAL, to.get(), to.length());
+    if (n >= 0) {
+      ++stats_.datagrams_out;
+      stats_.bytes_out += static_cast<uint64_t>(n);
+      return Ok{};
+    }
+    if (errno == EINTR) continue;
+    ++stats_.send_errors;
+    return Error{config_.name + ": cannot send to " + to.to_string() + ": " + std::strerror(errno)};
+  }
+}
+
+Status UdpEndpoint::send(std::span<const uint8_t> bytes) {
+  if (!partner_) return Error{config_.name + ": no partner to send to yet"};
+  return send_to(*partner_, bytes);
+}
+
+Status UdpEndpoint::queue(std::span<const uint8_t> frame) {
+  if (!tx_batch_.empty() && tx_batch_.size() + frame.size() > kMaxDatagram)
+    if (auto st = flush(); !st) return st;
+  tx_batch_.insert(tx_batch_.end(), frame.begin(), frame.end());
+  return Ok{};
+}
+
+Status UdpEndpoint::flush() {
+  if (tx_batch_.empty()) return Ok{};
+  auto st = send(tx_batch_);
+  tx_batch_.clear();
+  return st;
+}
+
+}  // namespace hitl::net

@@ -1,0 +1,95 @@
+// A non-blocking UDP endpoint: binds a local address, sends to its partner, and learns
+// the partner from what it hears (router style: answer the last sender; PX4 style:
+// keep the first sender for good). Later layers add TCP and routing on the same shape.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/common/expected.h"
+#include "engine/net/socket_address.h"
+
+namespace hitl::net {
+
+enum class PartnerPolicy {
+  Fixed,       ///< always send to the configured peer
+  LastSender,  ///< answer the source of the last datagram; the configured peer until one arrives
+  FirstSender  ///< lock onto the first source heard and keep it (a PX4 MAVLink instance)
+};
+
+struct EndpointStats {
+  uint64_t datagrams_in = 0;
+  uint64_t datagrams_out = 0;
+  uint64_t bytes_in = 0;
+  uint64_t bytes_out = 0;
+  uint64_t send_errors = 0;
+  uint64_t partner_changes = 0;
+};
+
+struct Datagram {
+  std::span<const uint8_t> bytes;
+  SocketAddress from;
+  int64_t rx_time_unix_ns = 0;  ///< kernel receive time (CLOCK_REALTIME)
+};
+
+class UdpEndpoint {
+ public:
+  struct Config {
+    std::string bind_address = "0.0.0.0";
+    uint16_t bind_port = 0;  ///< 0: ephemeral
+    std::optional<SocketAddress> peer;
+    PartnerPolicy policy = PartnerPolicy::LastSender;
+    std::string name = "UDP";  ///< names the endpoint in errors ("--port", "HIL link")
+  };
+
+  /// Opens and binds; a port in use or a bad address is an Error naming both.
+  static Expected<UdpEndpoint> open(const Config& config);
+
+  UdpEndpoint(UdpEndpoint&& other) noexcept;
+  UdpEndpoint& operator=(UdpEndpoint&& other) noexcept;
+  UdpEndpoint(const UdpEndpoint&) = delete;
+  UdpEndpoint& operator=(const UdpEndpoint&) = delete;
+  ~UdpEndpoint();
+
+  /// The next waiting datagram, or nullopt when none is waiting (never blocks).
+  /// The bytes stay valid until the next call.
+  std::optional<Datagram> receive();
+  /// Waits up to timeout_ms for a datagram to arrive; false on timeout or signal.
+  bool wait_readable(int timeout_ms) const;
+
+  /// Sends one datagram to the partner; an Error when no partner is known yet or the send fails.
+  Status send(std::span<const uint8_t> bytes);
+  Status send_to(const SocketAddress& to, std::span<const uint8_t> bytes);
+
+  /// Appends a frame to the datagram being built; sends first when it would exceed `max_datagram`.
+  Status queue(std::span<const uint8_t> frame);
+  /// Sends what queue() collected as one datagram.
+  Status flush();
+
+  const std::optional<SocketAddress>& partner() const { return partner_; }
+  void set_partner(const SocketAddress& address) { partner_ = address; }
+  const SocketAddress& local_address() const { return local_; }
+  const EndpointStats& stats() const { return stats_; }
+  const std::string& name() const { return config_.name; }
+  int fd() const { return fd_; }
+
+  static constexpr std::size_t kMaxDatagram = 1472;  ///< one Ethernet MTU of UDP payload
+
+ private:
+  UdpEndpoint(int fd, Config config, SocketAddress local);
+  void learn(const SocketAddress& from);
+
+  int fd_ = -1;
+  Config config_;
+  SocketAddress local_;
+  std::optional<SocketAddress> partner_;
+  bool locked_ = false;
+  EndpointStats stats_;
+  std::vector<uint8_t> rx_buffer_;
+  std::vector<uint8_t> tx_batch_;
+};
+
+}  // namespace hitl::net

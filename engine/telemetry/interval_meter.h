@@ -1,0 +1,46 @@
+// Inter-arrival statistics of one stream: count, mean/std (Welford), min/max, and
+// percentiles from a log-linear histogram (256 buckets per octave: ~0.4 % resolution).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace hitl::telemetry {
+
+struct GapSummary {
+  uint64_t count = 0;  ///< gaps measured (arrivals - 1)
+  double mean_us = 0;
+  double std_us = 0;
+  double min_us = 0;
+  double max_us = 0;
+  double p50_us = 0;
+  double p99_us = 0;
+};
+
+class IntervalMeter {
+ public:
+  IntervalMeter();
+  /// Records an arrival at `t_ns`; the first arrival only starts the clock. Arrivals that go back
+  /// in time (clock steps) are not counted as gaps.
+  void arrival(int64_t t_ns);
+  GapSummary summary() const;
+  int64_t first_ns() const { return first_ns_; }
+  int64_t last_ns() const { return last_ns_; }
+  uint64_t arrivals() const { return arrivals_; }
+
+ private:
+  void add_gap(uint64_t gap_us_x16);
+  double percentile(double q) const;
+
+  uint64_t arrivals_ = 0;
+  int64_t first_ns_ = 0;
+  int64_t last_ns_ = 0;
+  uint64_t gaps_ = 0;
+  double mean_ = 0;
+  double m2_ = 0;
+  double min_ = 0;
+  double max_ = 0;
+  std::vector<uint32_t> histogram_;
+};
+
+}  // namespace hitl::telemetry

@@ -1,0 +1,65 @@
+#include "engine/telemetry/traffic_stats.h"
+
+#include <algorithm>
+
+namespace hitl::telemetry {
+
+const MessageSummary* TrafficSummary::message(std::string_view name) const {
+  for (const auto& m : messages)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+void TrafficStats::restart(int64_t start_ns) { *this = TrafficStats(start_ns); }
+
+void TrafficStats::on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns) {
+  ++frames_;
+  auto& m = meters_[frame.msgid];
+  if (m.count == 0) m.name = frame.desc ? frame.desc->name : "#" + std::to_string(frame.msgid);
+  ++m.count;
+  ++m.window_count;
+  m.bytes += frame.raw_len;
+  m.gaps.arrival(t_ns);
+  sources_[{source, frame.sysid, frame.compid}].observe(frame.seq);
+}
+
+void TrafficStats::roll(int64_t now_ns) {
+  const double window_s = static_cast<double>(now_ns - window_start_ns_) * 1e-9;
+  for (auto& [id, m] : meters_) {
+    m.recent_rate_hz = window_s > 0 ? static_cast<double>(m.window_count) / window_s : 0.0;
+    m.window_count = 0;
+  }
+  window_start_ns_ = now_ns;
+}
+
+TrafficSummary TrafficStats::summary(int64_t now_ns, const mavlink::ParserStats& parser) const {
+  TrafficSummary s;
+  s.duration_s = std::max(0.0, static_cast<double>(now_ns - start_ns_) * 1e-9);
+  s.frames = frames_;
+  s.datagrams = datagrams_;
+  s.parser = parser;
+  for (const auto& [id, m] : meters_) {
+    MessageSummary ms;
+    ms.id = id;
+    ms.name = m.name;
+    ms.count = m.count;
+    ms.bytes = m.bytes;
+    ms.gap = m.gaps.summary();
+    ms.recent_rate_hz = m.recent_rate_hz;
+    const double span_s = static_cast<double>(std::max(now_ns, m.gaps.last_ns()) - m.gaps.first_ns()) * 1e-9;
+    ms.rate_hz = (m.count >= 2 && span_s > 0) ? static_cast<double>(m.count - 1) / span_s : 0.0;
+    ms.bytes_per_s = s.duration_s > 0 ? static_cast<double>(m.bytes) / s.duration_s : 0.0;
+    s.messages.push_back(std::move(ms));
+  }
+  for (const auto& [key, tracker] : sources_) {
+    SourceSummary src;
+    src.address = std::get<0>(key);
+    src.sysid = std::get<1>(key);
+    src.compid = std::get<2>(key);
+    src.seq = tracker.stats();
+    s.sources.push_back(std::move(src));
+  }
+  return s;
+}
+
+}  // namespace hitl::telemetry

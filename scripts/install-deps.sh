@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs everything hitl needs to build and test, from Debian/Ubuntu packages.
+# Debian 12 and Ubuntu 24.04. Uses sudo when not root.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+packages=(
+  build-essential cmake ccache pkg-config
+  libcli11-dev libeigen3-dev libsimbody-dev libncurses-dev nlohmann-json3-dev
+  libpugixml-dev libgeographiclib-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+if [ "${1:-}" = "--test" ]; then
+  # Tests also use: clang + its sanitizer/fuzzer runtime (libFuzzer), node + npm (node-mavlink conformance),
+  # tmux (terminal UI end-to-end), shellcheck (board scripts).
+  packages+=(clang libclang-rt-dev tmux shellcheck)
+  command -v node >/dev/null 2>&1 || packages+=(nodejs)
+  command -v npm >/dev/null 2>&1 || packages+=(npm)
+fi
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install-deps: installing ${missing[*]}" >&2
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
