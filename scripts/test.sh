@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The README's second command (and CI's): install dependencies, build everything
+# (hitl, tests, benchmarks, the libFuzzer target), and run every test with CTest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/install-deps.sh --test
+jobs=$(nproc)
+
+fuzz_args=()
+if [ -f tests/fuzz/CMakeLists.txt ]; then
+  cmake -S . -B build/fuzz -DHITL_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  cmake --build build/fuzz -j"$jobs"
+  fuzz_args=(-DHITL_FUZZ_BUILD_DIR="$PWD/build/fuzz")
+fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo "${fuzz_args[@]}" >/dev/null
+cmake --build build -j"$jobs"
+cd build
+ctest --output-on-failure -j"$jobs" --timeout 600
