@@ -22,6 +22,7 @@ void add_global_options(CLI::App& app, GlobalOptions& options) {
       ->group("MAVLink")
       ->type_name("FILE.xml");
   app.set_config("--config", "", "Read options from a TOML file ([inspect] port = 14570, ...)")->group("Config");
+  app.allow_config_extras(false);  // a misspelt key is an error naming it, not silently ignored
 }
 
 Expected<mavlink::MessageSet> load_messages(const GlobalOptions& options) {

@@ -273,3 +273,43 @@ TEST(InspectE2E, DialectFileNamesMessagesHitlDoesNotCompileIn) {
 
 }  // namespace
 }  // namespace hitl
+
+namespace hitl {
+namespace {
+
+TEST(CliE2E, HelpAndVersion) {
+  auto help = test::run_hitl({"--help"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("inspect"), std::string::npos);
+  EXPECT_NE(help.out.find("--json"), std::string::npos);
+  EXPECT_NE(help.out.find("--config"), std::string::npos);
+  auto version = test::run_hitl({"--version"});
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out.rfind("hitl ", 0), 0u) << version.out;
+  EXPECT_EQ(test::run_hitl({"inspect", "--help"}).exit_code, 0);
+}
+
+TEST(CliE2E, ConfigFileSetsSubcommandOptionsAndRejectsUnknownKeys) {
+  const auto dir = test::temp_dir();
+  const auto log = dir + "/l.tlog";
+  {
+    auto w = mavlink::TlogWriter::open(log);
+    mavlink::FrameEncoder enc(1, 1);
+    mavlink::FrameBuffer buf;
+    for (int i = 0; i < 101; ++i) w->write(1'000'000 + static_cast<uint64_t>(i) * 10'000, {buf.data(), enc.encode(mavlink::msg::Attitude{}, buf)});
+  }
+  std::ofstream(dir + "/ok.toml") << "json = true\n[inspect]\ntlog = \"" << log << "\"\nexpect = \"ATTITUDE=100\"\n";
+  auto ok = test::run_hitl({"--config", dir + "/ok.toml", "inspect"});
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"ATTITUDE\""), std::string::npos);
+  std::ofstream(dir + "/fail.toml") << "[inspect]\ntlog = \"" << log << "\"\nexpect = \"ATTITUDE=50\"\n";
+  EXPECT_EQ(test::run_hitl({"--config", dir + "/fail.toml", "inspect"}).exit_code, 1);
+  std::ofstream(dir + "/bad.toml") << "bogus_key = 3\n";
+  auto bad = test::run_hitl({"--config", dir + "/bad.toml", "inspect", "--tlog", log});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bogus_key"), std::string::npos) << bad.err;
+  EXPECT_EQ(test::run_hitl({"--config", dir + "/missing.toml", "inspect", "--tlog", log}).exit_code, 2);
+}
+
+}  // namespace
+}  // namespace hitl
