@@ -1,0 +1,415 @@
+#include "engine/model/config_json.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/model/x500_defaults.h"
+
+namespace hitl::model {
+namespace {
+
+using nlohmann::json;
+
+/// An allowed interval for a number, and how to say it in an error.
+struct Range {
+  enum class Kind { Any, Positive, NonNegative, Closed };
+  Kind kind = Kind::Any;
+  double lo = 0.0;
+  double hi = 0.0;
+
+  bool contains(double v) const {
+    switch (kind) {
+      case Kind::Any: return std::isfinite(v);
+      case Kind::Positive: return v > 0.0 && std::isfinite(v);
+      case Kind::NonNegative: return v >= 0.0 && std::isfinite(v);
+      case Kind::Closed: return v >= lo && v <= hi;
+    }
+    return false;
+  }
+  std::string describe() const {
+    switch (kind) {
+      case Kind::Any: return "must be a finite number";
+      case Kind::Positive: return "must be > 0";
+      case Kind::NonNegative: return "must be >= 0";
+      case Kind::Closed: {
+        std::ostringstream s;
+        s << "must be in [" << lo << ", " << hi << "]";
+        return s.str();
+      }
+    }
+    return {};
+  }
+};
+constexpr Range kAny{};
+constexpr Range kPositive{Range::Kind::Positive};
+constexpr Range kNonNegative{Range::Kind::NonNegative};
+constexpr Range closed(double lo, double hi) { return {Range::Kind::Closed, lo, hi}; }
+
+std::string child_path(const std::string& parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+
+/// Reads the keys a fields() function names from one JSON object into a config that already holds
+/// the base values. Errors collect in a shared list as "path: what".
+class Reader {
+ public:
+  Reader(const json& object, std::string path, std::vector<std::string>& errors)
+      : object_(object), path_(std::move(path)), errors_(errors) {}
+
+  void number(const char* key, double& out, Range range) {
+    const json* j = find(key);
+    if (j && check_number(*j, key, range)) out = j->get<double>();
+  }
+  void integer(const char* key, int& out, Range range) {
+    const json* j = find(key);
+    if (!j) return;
+    if (!j->is_number_integer()) return fail(key, "must be an integer (got " + j->dump() + ")");
+    if (!range.contains(j->get<double>())) return fail(key, range.describe() + " (got " + j->dump() + ")");
+    out = j->get<int>();
+  }
+  void text(const char* key, std::string& out) {
+    const json* j = find(key);
+    if (!j) return;
+    if (!j->is_string()) return fail(key, "must be a string (got " + j->dump() + ")");
+    out = j->get<std::string>();
+  }
+  void turning(const char* key, Turning& out) {
+    const json* j = find(key);
+    if (!j) return;
+    if (*j == "ccw") out = Turning::Ccw;
+    else if (*j == "cw") out = Turning::Cw;
+    else fail(key, "must be \"ccw\" or \"cw\" (got " + j->dump() + ")");
+  }
+  void vec3(const char* key, Eigen::Vector3d& out, Range range) {
+    const json* j = find(key);
+    if (j) read_vec3(*j, child_path(path_, key), out, range);
+  }
+  template <std::size_t N>
+  void vec3_array(const char* key, std::array<Eigen::Vector3d, N>& out, Range range) {
+    const json* j = find(key);
+    if (!j || !check_array(*j, key, N)) return;
+    for (std::size_t i = 0; i < N; ++i) read_vec3((*j)[i], index_path(key, i), out[i], range);
+  }
+  template <class Fields>
+  void object(const char* key, Fields&& fields) {
+    const json* j = find(key);
+    if (!j) return;
+    if (!j->is_object()) return fail(key, "must be an object (got " + j->dump() + ")");
+    Reader sub(*j, child_path(path_, key), errors_);
+    fields(sub);
+    sub.finish();
+  }
+  template <class T, std::size_t N, class Fields>
+  void object_array(const char* key, std::array<T, N>& out, Fields&& fields) {
+    const json* j = find(key);
+    if (!j || !check_array(*j, key, N)) return;
+    for (std::size_t i = 0; i < N; ++i) {
+      const json& item = (*j)[i];
+      if (!item.is_object()) {
+        errors_.push_back(index_path(key, i) + ": must be an object (got " + item.dump() + ")");
+        continue;
+      }
+      Reader sub(item, index_path(key, i), errors_);
+      fields(sub, out[i]);
+      sub.finish();
+    }
+  }
+  /// Reports every key of the object that no field asked for.
+  void finish() {
+    for (const auto& item : object_.items()) {
+      bool known = false;
+      for (const std::string& k : seen_) known = known || k == item.key();
+      if (!known) errors_.push_back(child_path(path_, item.key()) + ": unknown key");
+    }
+  }
+
+ private:
+  const json* find(const char* key) {
+    seen_.emplace_back(key);
+    auto it = object_.find(key);
+    return it == object_.end() ? nullptr : &*it;
+  }
+  void fail(const char* key, const std::string& what) { errors_.push_back(child_path(path_, key) + ": " + what); }
+  std::string index_path(const char* key, std::size_t i) const {
+    return child_path(path_, key) + "[" + std::to_string(i) + "]";
+  }
+  bool check_number(const json& j, const char* key, Range range) {
+    if (!j.is_number()) {
+      fail(key, "must be a number (got " + j.dump() + ")");
+      return false;
+    }
+    if (!range.contains(j.get<double>())) {
+      fail(key, range.describe() + " (got " + j.dump() + ")");
+      return false;
+    }
+    return true;
+  }
+  bool check_array(const json& j, const char* key, std::size_t n) {
+    if (j.is_array() && j.size() == n) return true;
+    fail(key, "must be an array of " + std::to_string(n) + " (got " + j.dump() + ")");
+    return false;
+  }
+  void read_vec3(const json& j, const std::string& path, Eigen::Vector3d& out, Range range) {
+    if (!j.is_array() || j.size() != 3) {
+      errors_.push_back(path + ": must be an array of 3 numbers (got " + j.dump() + ")");
+      return;
+    }
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) {
+      const json& e = j[static_cast<std::size_t>(i)];
+      if (!e.is_number() || !range.contains(e.get<double>())) {
+        errors_.push_back(path + "[" + std::to_string(i) + "]: " +
+                          (e.is_number() ? range.describe() : std::string("must be a number")) + " (got " + e.dump() + ")");
+        return;
+      }
+      v[i] = e.get<double>();
+    }
+    out = v;
+  }
+
+  const json& object_;
+  std::string path_;
+  std::vector<std::string>& errors_;
+  std::vector<std::string> seen_;
+};
+
+/// Writes the same fields to a JSON object (ranges are ignored).
+class Writer {
+ public:
+  explicit Writer(json& object) : object_(object) { object_ = json::object(); }
+
+  void number(const char* key, const double& v, Range) { object_[key] = v; }
+  void integer(const char* key, const int& v, Range) { object_[key] = v; }
+  void text(const char* key, const std::string& v) { object_[key] = v; }
+  void turning(const char* key, const Turning& v) { object_[key] = v == Turning::Ccw ? "ccw" : "cw"; }
+  void vec3(const char* key, const Eigen::Vector3d& v, Range) { object_[key] = to_json(v); }
+  template <std::size_t N>
+  void vec3_array(const char* key, const std::array<Eigen::Vector3d, N>& v, Range) {
+    json a = json::array();
+    for (const Eigen::Vector3d& e : v) a.push_back(to_json(e));
+    object_[key] = a;
+  }
+  template <class Fields>
+  void object(const char* key, Fields&& fields) {
+    Writer sub(object_[key]);
+    fields(sub);
+  }
+  template <class T, std::size_t N, class Fields>
+  void object_array(const char* key, const std::array<T, N>& items, Fields&& fields) {
+    json a = json::array();
+    for (const T& item : items) {
+      json o;
+      Writer sub(o);
+      fields(sub, const_cast<T&>(item));  // fields() takes T&; the Writer only reads it
+      a.push_back(o);
+    }
+    object_[key] = a;
+  }
+
+ private:
+  static json to_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+  json& object_;
+};
+
+// ---- The field tables: the one list of keys, used for reading and for writing. ----
+
+template <class V>
+void inertial_noise_fields(V& v, InertialNoiseConfig& n) {
+  v.number("noise_density", n.noise_density, kNonNegative);
+  v.number("random_walk", n.random_walk, kNonNegative);
+  v.number("bias_correlation_time_s", n.bias_correlation_time_s, kPositive);
+  v.number("turn_on_bias_sigma", n.turn_on_bias_sigma, kNonNegative);
+}
+
+template <class V>
+void rotor_fields(V& v, RotorConfig& r) {
+  v.vec3("position_FLU_m", r.position_FLU_m, closed(-10.0, 10.0));
+  v.turning("turning", r.turning);
+  v.number("mass_kg", r.mass_kg, kPositive);
+  v.vec3("inertia_kgm2", r.inertia_kgm2, kPositive);
+  v.number("time_constant_up_s", r.time_constant_up_s, kPositive);
+  v.number("time_constant_down_s", r.time_constant_down_s, kPositive);
+  v.number("max_rot_velocity_rad_s", r.max_rot_velocity_rad_s, kPositive);
+  v.number("motor_constant_N_s2", r.motor_constant_N_s2, kNonNegative);
+  v.number("moment_constant_m", r.moment_constant_m, kNonNegative);
+  v.number("rotor_drag_coefficient", r.rotor_drag_coefficient, kNonNegative);
+  v.number("rolling_moment_coefficient", r.rolling_moment_coefficient, kNonNegative);
+  v.number("axial_speed_falloff_m_s", r.axial_speed_falloff_m_s, kPositive);
+  v.number("input_offset", r.input_offset, kAny);
+  v.number("input_scaling_rad_s", r.input_scaling_rad_s, kAny);
+  v.number("zero_position_armed_rad_s", r.zero_position_armed_rad_s, kAny);
+}
+
+template <class V>
+void vehicle_fields(V& v, VehicleConfig& c) {
+  v.text("name", c.name);
+  v.object("base", [&](auto& b) {
+    b.number("mass_kg", c.base.mass_kg, kPositive);
+    b.vec3("inertia_kgm2", c.base.inertia_kgm2, kPositive);
+    b.vec3("linear_drag_N_s_m", c.base.linear_drag_N_s_m, kNonNegative);
+  });
+  v.object_array("rotors", c.rotors, [](auto& r, RotorConfig& rotor) { rotor_fields(r, rotor); });
+  v.object("landing_gear", [&](auto& g) {
+    LandingGearConfig& lg = c.landing_gear;
+    g.vec3_array("contact_points_FLU_m", lg.contact_points_FLU_m, closed(-10.0, 10.0));
+    g.number("stiffness_N_m", lg.stiffness_N_m, kPositive);
+    g.number("damping_N_s_m", lg.damping_N_s_m, kNonNegative);
+    g.number("friction_coefficient", lg.friction_coefficient, kNonNegative);
+    g.number("tangential_stiffness_N_m", lg.tangential_stiffness_N_m, kPositive);
+    g.number("tangential_damping_N_s_m", lg.tangential_damping_N_s_m, kNonNegative);
+  });
+  v.object("sensors", [&](auto& s) {
+    SensorsConfig& sc = c.sensors;
+    s.object("imu", [&](auto& i) {
+      i.number("rate_hz", sc.imu.rate_hz, closed(0.1, 10000.0));
+      i.vec3("position_FLU_m", sc.imu.position_FLU_m, closed(-10.0, 10.0));
+      i.object("gyro", [&](auto& n) { inertial_noise_fields(n, sc.imu.gyro); });
+      i.object("accel", [&](auto& n) { inertial_noise_fields(n, sc.imu.accel); });
+    });
+    s.object("mag", [&](auto& m) {
+      m.number("rate_hz", sc.mag.rate_hz, closed(0.1, 10000.0));
+      m.object("noise", [&](auto& n) { inertial_noise_fields(n, sc.mag.noise); });
+    });
+    s.object("baro", [&](auto& b) {
+      b.number("rate_hz", sc.baro.rate_hz, closed(0.1, 10000.0));
+      b.number("noise_pa", sc.baro.noise_pa, kNonNegative);
+      b.number("drift_pa_sqrt_s", sc.baro.drift_pa_sqrt_s, kNonNegative);
+      b.number("temperature_noise_c", sc.baro.temperature_noise_c, kNonNegative);
+    });
+    s.object("gps", [&](auto& g) {
+      GpsConfig& gc = sc.gps;
+      g.number("rate_hz", gc.rate_hz, closed(0.1, 10000.0));
+      g.number("horizontal_noise_m", gc.horizontal_noise_m, kNonNegative);
+      g.number("vertical_noise_m", gc.vertical_noise_m, kNonNegative);
+      g.number("horizontal_error_sigma_m", gc.horizontal_error_sigma_m, kNonNegative);
+      g.number("vertical_error_sigma_m", gc.vertical_error_sigma_m, kNonNegative);
+      g.number("error_correlation_time_s", gc.error_correlation_time_s, kPositive);
+      g.number("velocity_noise_m_s", gc.velocity_noise_m_s, kNonNegative);
+      g.number("eph_m", gc.eph_m, kNonNegative);
+      g.number("epv_m", gc.epv_m, kNonNegative);
+      g.integer("satellites", gc.satellites, closed(0, 255));
+      g.number("delay_s", gc.delay_s, closed(0.0, 10.0));
+    });
+  });
+}
+
+template <class V>
+void world_fields(V& v, WorldConfig& w) {
+  v.number("gravity_m_s2", w.gravity_m_s2, closed(0.0, 100.0));
+  v.object("home", [&](auto& h) {
+    h.number("lat_deg", w.home.lat_deg, closed(-90.0, 90.0));
+    h.number("lon_deg", w.home.lon_deg, closed(-180.0, 180.0));
+    h.number("alt_m", w.home.alt_m, closed(-1000.0, 9000.0));
+  });
+  v.object("magnetic_field", [&](auto& m) {
+    m.number("declination_deg", w.magnetic_field.declination_deg, closed(-180.0, 180.0));
+    m.number("inclination_deg", w.magnetic_field.inclination_deg, closed(-90.0, 90.0));
+    m.number("strength_gauss", w.magnetic_field.strength_gauss, closed(0.0, 10.0));
+  });
+  v.object("atmosphere", [&](auto& a) {
+    a.number("sea_level_pressure_pa", w.atmosphere.sea_level_pressure_pa, closed(50000.0, 120000.0));
+    a.number("sea_level_temperature_c", w.atmosphere.sea_level_temperature_c, closed(-80.0, 60.0));
+  });
+  v.object("wind", [&](auto& a) {
+    a.vec3("velocity_ENU_m_s", w.wind.velocity_ENU_m_s, closed(-100.0, 100.0));
+    a.vec3("gust_sigma_m_s", w.wind.gust_sigma_m_s, closed(0.0, 50.0));
+    a.number("gust_correlation_time_s", w.wind.gust_correlation_time_s, kPositive);
+  });
+  v.object("physics", [&](auto& p) {
+    p.number("step_s", w.physics.step_s, closed(1e-4, 0.1));
+    p.number("max_substep_s", w.physics.max_substep_s, closed(1e-5, 0.1));
+    p.number("max_speed_m_s", w.physics.max_speed_m_s, kPositive);
+    p.number("max_angular_rate_rad_s", w.physics.max_angular_rate_rad_s, kPositive);
+  });
+}
+
+template <class Config, class Fields>
+Expected<Config> parse(std::string_view text, std::string_view source_name, Config config, Fields fields) {
+  const std::string source(source_name);
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    return Error{source + ": not valid JSON: " + e.what()};
+  }
+  if (!root.is_object()) return Error{source + ": must be a JSON object (got " + std::string(root.type_name()) + ")"};
+  std::vector<std::string> errors;
+  Reader reader(root, "", errors);
+  fields(reader, config);
+  reader.finish();
+  if (errors.empty()) return config;
+  std::string message;
+  for (const std::string& e : errors) message += (message.empty() ? "" : "\n") + source + ": " + e;
+  return Error{message};
+}
+
+template <class Config, class Fields>
+std::string write(const Config& config, Fields fields) {
+  json root;
+  Writer writer(root);
+  fields(writer, const_cast<Config&>(config));  // fields() takes Config&; the Writer only reads it
+  return root.dump(2);
+}
+
+Expected<std::string> read_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return Error{file.string() + ": cannot open for reading"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+template <class Config>
+Status as_status(const Expected<Config>& parsed) {
+  if (parsed) return Ok{};
+  return parsed.error();
+}
+
+}  // namespace
+
+Expected<VehicleConfig> parse_vehicle_config(std::string_view json_text, std::string_view source_name,
+                                             const VehicleConfig& base) {
+  return parse(json_text, source_name, base, [](auto& v, VehicleConfig& c) { vehicle_fields(v, c); });
+}
+Expected<VehicleConfig> parse_vehicle_config(std::string_view json_text, std::string_view source_name) {
+  return parse_vehicle_config(json_text, source_name, x500_vehicle_config());
+}
+Expected<VehicleConfig> load_vehicle_config(const std::filesystem::path& file) {
+  Expected<std::string> text = read_file(file);
+  if (!text) return text.error();
+  return parse_vehicle_config(*text, file.string());
+}
+
+Expected<WorldConfig> parse_world_config(std::string_view json_text, std::string_view source_name,
+                                         const WorldConfig& base) {
+  return parse(json_text, source_name, base, [](auto& v, WorldConfig& c) { world_fields(v, c); });
+}
+Expected<WorldConfig> parse_world_config(std::string_view json_text, std::string_view source_name) {
+  return parse_world_config(json_text, source_name, default_world_config());
+}
+Expected<WorldConfig> load_world_config(const std::filesystem::path& file) {
+  Expected<std::string> text = read_file(file);
+  if (!text) return text.error();
+  return parse_world_config(*text, file.string());
+}
+
+std::string to_json_text(const VehicleConfig& config) {
+  return write(config, [](auto& v, VehicleConfig& c) { vehicle_fields(v, c); });
+}
+std::string to_json_text(const WorldConfig& config) {
+  return write(config, [](auto& v, WorldConfig& c) { world_fields(v, c); });
+}
+
+Status validate(const VehicleConfig& config) {
+  return as_status(parse_vehicle_config(to_json_text(config), "vehicle config", config));
+}
+Status validate(const WorldConfig& config) {
+  return as_status(parse_world_config(to_json_text(config), "world config", config));
+}
+
+}  // namespace hitl::model

@@ -1,0 +1,249 @@
+#include "engine/model/multicopter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include <Simbody.h>
+
+#include "engine/model/config_json.h"
+#include "engine/model/motor_model.h"
+#include "engine/model/simbody_forces.h"
+#include "engine/model/wind.h"
+
+namespace hitl::model {
+namespace {
+
+SimTK::Inertia inertia_of(const Eigen::Vector3d& i_kgm2) { return {i_kgm2.x(), i_kgm2.y(), i_kgm2.z()}; }
+
+std::string format_vec(const Eigen::Vector3d& v) {
+  std::ostringstream s;
+  s << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return s.str();
+}
+
+bool all_finite(const SimTK::Vector& v) {
+  for (int i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+struct Multicopter::Impl {
+  Impl(const VehicleConfig& vehicle_config, const WorldConfig& world_config, std::uint64_t seed)
+      : vehicle(vehicle_config),
+        world(world_config),
+        matter(system),
+        forces(system),
+        gravity(forces, matter, SimTK::Vec3(0, 0, -world_config.gravity_m_s2)),
+        wind(world_config.wind, seed) {
+    const int substeps = static_cast<int>(std::ceil(world.physics.step_s / world.physics.max_substep_s - 1e-9));
+    inputs.substep_s = world.physics.step_s / std::max(1, substeps);
+
+    SimTK::Body::Rigid base_body(SimTK::MassProperties(vehicle.base.mass_kg, SimTK::Vec3(0), inertia_of(vehicle.base.inertia_kgm2)));
+    SimTK::MobilizedBody::Free base(matter.Ground(), SimTK::Transform(), base_body, SimTK::Transform());
+    base_index = base.getMobilizedBodyIndex();
+    for (std::size_t i = 0; i < rotor_index.size(); ++i) {
+      const RotorConfig& rc = vehicle.rotors[i];
+      SimTK::Body::Rigid rotor_body(SimTK::MassProperties(rc.mass_kg, SimTK::Vec3(0), inertia_of(rc.inertia_kgm2)));
+      // Pin about z of both frames: the rotor spins about body z at its hub.
+      SimTK::MobilizedBody::Pin rotor(base, SimTK::Transform(to_simtk(rc.position_FLU_m)), rotor_body, SimTK::Transform());
+      rotor_index[i] = rotor.getMobilizedBodyIndex();
+    }
+    SimTK::Force::Custom(forces, new MulticopterForces(vehicle, matter, base_index, rotor_index, inputs));
+    system.realizeTopology();
+
+    integrator.emplace(system, inputs.substep_s);
+    integrator->setAllowInterpolation(false);
+    integrator->setReturnEveryInternalStep(false);
+  }
+
+  const SimTK::MobilizedBody& base() const { return matter.getMobilizedBody(base_index); }
+
+  void reset(const InitialCondition& initial) {
+    SimTK::State s = system.getDefaultState();
+    const Eigen::Quaterniond q = initial.q_FLU_to_ENU.normalized();
+    const SimTK::Rotation R_FLU_to_ENU(SimTK::Quaternion(q.w(), q.x(), q.y(), q.z()));
+    base().setQToFitTransform(s, SimTK::Transform(R_FLU_to_ENU, to_simtk(initial.p_ENU_m)));
+    base().setUToFitVelocity(s, SimTK::SpatialVec(R_FLU_to_ENU * to_simtk(initial.w_FLU_rad_s), to_simtk(initial.v_ENU_m_s)));
+    for (std::size_t i = 0; i < rotor_index.size(); ++i) {
+      matter.getMobilizedBody(rotor_index[i])
+          .setOneU(s, SimTK::MobilizerUIndex(0), spin_sign(vehicle.rotors[i].turning) * initial.rotor_speed_rad_s[i]);
+    }
+    inputs.omega_ref_rad_s.fill(0.0);
+    inputs.anchors = {};
+    wind.reset();
+    inputs.wind_ENU_m_s = wind.velocity_ENU_m_s();
+    integrator->initialize(s);
+    // The first stepTo() after initialize() only reports the start of a continuous interval; take
+    // that call here so that every step() advances time and sees the inputs set before it.
+    integrator->stepTo(s.getTime());
+    failure.reset();
+    step_count = 0;
+    published = extract(integrator->getState(), nullptr);
+    update_anchors();
+  }
+
+  /// The public state of a realized Simbody state; `previous` gives the velocities one step back
+  /// (for the accelerations), none at reset (at rest by definition).
+  VehicleState extract(const SimTK::State& s, const VehicleState* previous) const {
+    system.realize(s, SimTK::Stage::Velocity);
+    const SimTK::Transform& X_ENU_FLU = base().getBodyTransform(s);
+    const SimTK::Quaternion q = X_ENU_FLU.R().convertRotationToQuaternion();
+    VehicleState out;
+    out.time_s = s.getTime();
+    out.step = step_count;
+    out.p_ENU_m = to_eigen(X_ENU_FLU.p());
+    out.q_FLU_to_ENU = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+    out.v_ENU_m_s = to_eigen(base().getBodyOriginVelocity(s));
+    out.w_FLU_rad_s = to_eigen(~X_ENU_FLU.R() * base().getBodyAngularVelocity(s));
+    if (previous) {
+      const double dt_s = world.physics.step_s;
+      out.a_ENU_m_s2 = (out.v_ENU_m_s - previous->v_ENU_m_s) / dt_s;
+      out.alpha_FLU_rad_s2 = (out.w_FLU_rad_s - previous->w_FLU_rad_s) / dt_s;
+    }
+    const Eigen::Vector3d g_ENU_m_s2(0.0, 0.0, -world.gravity_m_s2);
+    out.specific_force_FLU_m_s2 = out.q_FLU_to_ENU.conjugate() * (out.a_ENU_m_s2 - g_ENU_m_s2);
+    for (std::size_t i = 0; i < rotor_index.size(); ++i) {
+      out.rotor_speed_rad_s[i] = std::abs(matter.getMobilizedBody(rotor_index[i]).getOneU(s, SimTK::MobilizerUIndex(0)));
+    }
+    out.wind_ENU_m_s = inputs.wind_ENU_m_s;
+    for (const Eigen::Vector3d& p_FLU_m : vehicle.landing_gear.contact_points_FLU_m) {
+      out.on_ground = out.on_ground || (out.p_ENU_m + out.q_FLU_to_ENU * p_FLU_m).z() < 0.0;
+    }
+    return out;
+  }
+
+  void update_anchors() {
+    const SimTK::State& s = integrator->getState();
+    const SimTK::Transform& X_ENU_FLU = base().getBodyTransform(s);
+    const auto& points = vehicle.landing_gear.contact_points_FLU_m;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const SimTK::Vec3 p_FLU_m = to_simtk(points[k]);
+      update_contact_anchor(vehicle.landing_gear, to_eigen(X_ENU_FLU * p_FLU_m),
+                            to_eigen(base().findStationVelocityInGround(s, p_FLU_m)), inputs.anchors[k]);
+    }
+  }
+
+  /// Why the state `s` is not acceptable, if it is not.
+  std::optional<std::string> blow_up_reason(const SimTK::State& s) const {
+    if (!all_finite(s.getQ()) || !all_finite(s.getU())) return std::string("state is not finite");
+    system.realize(s, SimTK::Stage::Velocity);
+    std::ostringstream why;
+    const double speed_m_s = base().getBodyOriginVelocity(s).norm();
+    const double rate_rad_s = base().getBodyAngularVelocity(s).norm();
+    if (!(speed_m_s <= world.physics.max_speed_m_s)) {
+      why << "speed " << speed_m_s << " m/s exceeds physics.max_speed_m_s " << world.physics.max_speed_m_s;
+    } else if (!(rate_rad_s <= world.physics.max_angular_rate_rad_s)) {
+      why << "angular rate " << rate_rad_s << " rad/s exceeds physics.max_angular_rate_rad_s "
+          << world.physics.max_angular_rate_rad_s;
+    } else {
+      return std::nullopt;
+    }
+    return why.str();
+  }
+
+  Status step() {
+    if (failure) return *failure;
+    const double dt_s = world.physics.step_s;
+    inputs.wind_ENU_m_s = wind.advance(dt_s);
+    // Inputs changed since the state was last realized: forces must be recomputed in this step.
+    integrator->updAdvancedState().invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
+    const std::uint64_t next = step_count + 1;
+    std::optional<std::string> reason;
+    try {
+      integrator->stepTo(static_cast<double>(next) * dt_s);
+      reason = blow_up_reason(integrator->getState());
+    } catch (const std::exception& e) {
+      reason = std::string("Simbody: ") + e.what();
+    }
+    if (reason) {
+      std::ostringstream msg;
+      const VehicleState& g = published;
+      msg << "physics blew up in step " << next << " (t = " << static_cast<double>(next) * dt_s << " s): " << *reason
+          << "; last good state at t = " << g.time_s << " s: p_ENU_m " << format_vec(g.p_ENU_m) << ", v_ENU_m_s "
+          << format_vec(g.v_ENU_m_s) << ", w_FLU_rad_s " << format_vec(g.w_FLU_rad_s) << ", rotor speeds ("
+          << g.rotor_speed_rad_s[0] << ", " << g.rotor_speed_rad_s[1] << ", " << g.rotor_speed_rad_s[2] << ", "
+          << g.rotor_speed_rad_s[3] << ") rad/s";
+      failure = Error{msg.str()};
+      return *failure;
+    }
+    step_count = next;
+    published = extract(integrator->getState(), &published);
+    update_anchors();
+    return Ok{};
+  }
+
+  VehicleConfig vehicle;
+  WorldConfig world;
+  SimTK::MultibodySystem system;
+  SimTK::SimbodyMatterSubsystem matter;
+  SimTK::GeneralForceSubsystem forces;
+  SimTK::Force::UniformGravity gravity;
+  SimTK::MobilizedBodyIndex base_index;
+  std::array<SimTK::MobilizedBodyIndex, 4> rotor_index;
+  ForceInputs inputs;
+  Wind wind;
+  std::optional<SimTK::SemiExplicitEulerIntegrator> integrator;
+  InputCounters counters;
+  VehicleState published;
+  std::uint64_t step_count = 0;
+  std::optional<Error> failure;
+};
+
+Expected<std::unique_ptr<Multicopter>> Multicopter::create(const VehicleConfig& vehicle, const WorldConfig& world,
+                                                           std::uint64_t seed) {
+  if (Status s = validate(vehicle); !s) return s.error();
+  if (Status s = validate(world); !s) return s.error();
+  auto impl = std::make_unique<Impl>(vehicle, world, seed);
+  std::unique_ptr<Multicopter> m(new Multicopter(std::move(impl)));
+  m->reset();
+  return m;
+}
+
+Multicopter::Multicopter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Multicopter::~Multicopter() = default;
+
+void Multicopter::set_motor_commands(const MotorCommands& commands) {
+  Impl& m = *impl_;
+  for (std::size_t i = 0; i < commands.u.size(); ++i) {
+    double u = commands.u[i];
+    if (!std::isfinite(u)) {
+      ++m.counters.non_finite;
+      u = 0.0;
+    } else if (u < 0.0 || u > 1.0) {
+      ++m.counters.out_of_range;
+      u = std::clamp(u, 0.0, 1.0);
+    }
+    m.inputs.omega_ref_rad_s[i] = omega_reference_rad_s(m.vehicle.rotors[i], u, commands.armed);
+  }
+}
+
+void Multicopter::set_external_force_ENU_N(const Eigen::Vector3d& f_ENU_N) {
+  impl_->inputs.external_force_ENU_N = f_ENU_N.allFinite() ? f_ENU_N : Eigen::Vector3d::Zero();
+}
+
+Status Multicopter::step() { return impl_->step(); }
+void Multicopter::reset() { impl_->reset(resting_on_ground()); }
+void Multicopter::reset(const InitialCondition& initial) { impl_->reset(initial); }
+const VehicleState& Multicopter::state() const { return impl_->published; }
+const InputCounters& Multicopter::input_counters() const { return impl_->counters; }
+const VehicleConfig& Multicopter::vehicle_config() const { return impl_->vehicle; }
+const WorldConfig& Multicopter::world_config() const { return impl_->world; }
+
+InitialCondition Multicopter::resting_on_ground() const {
+  const LandingGearConfig& gear = impl_->vehicle.landing_gear;
+  double lowest_m = 0.0;
+  for (const Eigen::Vector3d& p : gear.contact_points_FLU_m) lowest_m = std::min(lowest_m, p.z());
+  // Sunk into the springs by the static load, shared by the four contact points.
+  const double sink_m = total_mass_kg(impl_->vehicle) * impl_->world.gravity_m_s2 /
+                        (static_cast<double>(gear.contact_points_FLU_m.size()) * gear.stiffness_N_m);
+  InitialCondition rest;
+  rest.p_ENU_m = {0.0, 0.0, -lowest_m - sink_m};
+  return rest;
+}
+
+}  // namespace hitl::model

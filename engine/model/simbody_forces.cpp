@@ -1,0 +1,63 @@
+#include "engine/model/simbody_forces.h"
+
+#include <cmath>
+
+#include "engine/model/motor_model.h"
+
+namespace hitl::model {
+
+MulticopterForces::MulticopterForces(const VehicleConfig& vehicle, const SimTK::SimbodyMatterSubsystem& matter,
+                                     SimTK::MobilizedBodyIndex base,
+                                     const std::array<SimTK::MobilizedBodyIndex, 4>& rotors, const ForceInputs& inputs)
+    : vehicle_(vehicle), matter_(matter), base_(base), rotors_(rotors), inputs_(inputs) {}
+
+void MulticopterForces::calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                                  SimTK::Vector_<SimTK::Vec3>& /*particle_forces*/,
+                                  SimTK::Vector& mobility_forces) const {
+  const SimTK::MobilizedBody& base = matter_.getMobilizedBody(base_);
+  const SimTK::Transform& X_ENU_FLU = base.getBodyTransform(state);
+  const SimTK::Rotation& R_FLU_to_ENU = X_ENU_FLU.R();
+  const Eigen::Vector3d wind_ENU_m_s = inputs_.wind_ENU_m_s;
+  const double h_s = inputs_.substep_s;
+
+  for (std::size_t i = 0; i < rotors_.size(); ++i) {
+    const RotorConfig& rc = vehicle_.rotors[i];
+    const SimTK::MobilizedBody& rotor = matter_.getMobilizedBody(rotors_[i]);
+    // Motor: a torque on the pin (its reaction acts on the frame) sized so that one integrator
+    // step moves the spin rate onto the first-order lag curve towards the reference.
+    const double s = spin_sign(rc.turning);
+    const double omega_pin_rad_s = rotor.getOneU(state, SimTK::MobilizerUIndex(0));  // about +z, relative to frame
+    const double omega_rad_s = s * omega_pin_rad_s;  // along the spin direction
+    const double omega_next_rad_s = next_rotor_speed_rad_s(rc, omega_rad_s, inputs_.omega_ref_rad_s[i], h_s);
+    const double torque_Nm = rc.inertia_kgm2.z() * s * (omega_next_rad_s - omega_rad_s) / h_s;
+    rotor.applyOneMobilityForce(state, SimTK::MobilizerUIndex(0), torque_Nm, mobility_forces);
+
+    // Aerodynamics at the hub; axis = rotor +z (= frame +z) in ENU.
+    const SimTK::Transform& X_ENU_R = rotor.getBodyTransform(state);
+    const Eigen::Vector3d axis_ENU = to_eigen(X_ENU_R.z());
+    const Eigen::Vector3d v_hub_ENU_m_s = to_eigen(rotor.getBodyOriginVelocity(state));
+    const RotorLoads loads = rotor_loads(rc, omega_pin_rad_s, axis_ENU, v_hub_ENU_m_s - wind_ENU_m_s);
+    rotor.applyForceToBodyPoint(state, SimTK::Vec3(0), to_simtk(loads.force_at_hub_ENU_N), body_forces);
+    base.applyBodyTorque(state, to_simtk(loads.torque_on_frame_ENU_Nm), body_forces);
+  }
+
+  // Linear body drag per body axis, and the external force, at the base origin.
+  const Eigen::Vector3d v_air_FLU_m_s =
+      to_eigen(~R_FLU_to_ENU * (base.getBodyOriginVelocity(state) - to_simtk(wind_ENU_m_s)));
+  const Eigen::Vector3d drag_FLU_N = -vehicle_.base.linear_drag_N_s_m.cwiseProduct(v_air_FLU_m_s);
+  const SimTK::Vec3 f_base_ENU_N = R_FLU_to_ENU * to_simtk(drag_FLU_N) + to_simtk(inputs_.external_force_ENU_N);
+  base.applyForceToBodyPoint(state, SimTK::Vec3(0), f_base_ENU_N, body_forces);
+
+  // Landing gear.
+  const LandingGearConfig& gear = vehicle_.landing_gear;
+  for (std::size_t k = 0; k < gear.contact_points_FLU_m.size(); ++k) {
+    const SimTK::Vec3 p_FLU_m = to_simtk(gear.contact_points_FLU_m[k]);
+    const Eigen::Vector3d p_ENU_m = to_eigen(X_ENU_FLU * p_FLU_m);
+    if (p_ENU_m.z() >= 0.0) continue;
+    const Eigen::Vector3d v_ENU_m_s = to_eigen(base.findStationVelocityInGround(state, p_FLU_m));
+    const Eigen::Vector3d f_ENU_N = ground_contact_force_ENU_N(gear, p_ENU_m, v_ENU_m_s, inputs_.anchors[k]);
+    base.applyForceToBodyPoint(state, p_FLU_m, to_simtk(f_ENU_N), body_forces);
+  }
+}
+
+}  // namespace hitl::model

@@ -1,0 +1,47 @@
+// PRIVATE to engine/model (includes Simbody): the x500's applied forces as one Simbody custom
+// force: motor torques on the rotor pins, rotor thrust/drag at the hubs, yaw drag torque and
+// rolling moment on the frame, linear body drag, an external force, and the landing gear.
+#pragma once
+
+#include <array>
+
+#include <Eigen/Core>
+#include <Simbody.h>
+
+#include "engine/model/ground_contact.h"
+#include "engine/model/vehicle_config.h"
+
+namespace hitl::model {
+
+/// Inputs the forces read; written between steps by the owner (who then invalidates the cache at
+/// Stage::Dynamics so that they act in the next step).
+struct ForceInputs {
+  std::array<double, 4> omega_ref_rad_s{};
+  Eigen::Vector3d wind_ENU_m_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d external_force_ENU_N = Eigen::Vector3d::Zero();
+  std::array<ContactAnchor, 4> anchors{};
+  double substep_s = 0.004;  ///< the integrator's fixed step (the motor torque aims to land on the lag curve)
+};
+
+inline SimTK::Vec3 to_simtk(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+inline Eigen::Vector3d to_eigen(const SimTK::Vec3& v) { return {v[0], v[1], v[2]}; }
+
+class MulticopterForces : public SimTK::Force::Custom::Implementation {
+ public:
+  MulticopterForces(const VehicleConfig& vehicle, const SimTK::SimbodyMatterSubsystem& matter,
+                    SimTK::MobilizedBodyIndex base, const std::array<SimTK::MobilizedBodyIndex, 4>& rotors,
+                    const ForceInputs& inputs);
+
+  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                 SimTK::Vector_<SimTK::Vec3>& particle_forces, SimTK::Vector& mobility_forces) const override;
+  SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
+
+ private:
+  VehicleConfig vehicle_;
+  const SimTK::SimbodyMatterSubsystem& matter_;
+  SimTK::MobilizedBodyIndex base_;
+  std::array<SimTK::MobilizedBodyIndex, 4> rotors_;
+  const ForceInputs& inputs_;
+};
+
+}  // namespace hitl::model
