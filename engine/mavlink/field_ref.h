@@ -57,6 +57,10 @@ struct FieldRef {
   static constexpr std::size_t wire_size = sizeof(Element) * (array_length == 0 ? 1 : array_length);
 };
 
+// Explicit guide: clang < 17 does not deduce template arguments for aggregates (P1816) on its own.
+template <class Message, class Member>
+FieldRef(std::string_view, Member Message::*, std::string_view, std::string_view, bool) -> FieldRef<Message, Member>;
+
 template <class... Ts>
 struct TypeList {};
 

@@ -56,14 +56,16 @@ inline void get(const uint8_t*& in, std::array<T, N>& values) {
 /// Writes all M::kMaxLength payload bytes of `message` to `out` (untruncated).
 template <class M>
 void encode_payload(const M& message, uint8_t* out) {
-  std::apply([&](const auto&... field) { (detail::put(out, message.*(field.member)), ...); }, M::fields());
+  static constexpr auto kFields = M::fields();  // a constant: the member pointers fold away
+  std::apply([&](const auto&... field) { (detail::put(out, message.*(field.member)), ...); }, kFields);
 }
 
 /// Reads a message from a payload zero-extended to at least M::kMaxLength bytes.
 template <class M>
 M decode_payload(const uint8_t* payload) {
   M message;
-  std::apply([&](const auto&... field) { (detail::get(payload, message.*(field.member)), ...); }, M::fields());
+  static constexpr auto kFields = M::fields();
+  std::apply([&](const auto&... field) { (detail::get(payload, message.*(field.member)), ...); }, kFields);
   return message;
 }
 
