@@ -1,0 +1,13 @@
+// The signing key shared by the frame parser fuzzer and its corpus generator, so that signed
+// frames in the seed corpus verify and the fuzzer reaches the accept path of signing.
+#pragma once
+
+#include "engine/mavlink/signing.h"
+
+namespace hitl::fuzz {
+
+inline constexpr mavlink::SigningKey kFuzzKey = {0x01, 0x23, 0x45, 0x67, 0x89, 0xab, 0xcd, 0xef, 0xfe, 0xdc, 0xba,
+                                                 0x98, 0x76, 0x54, 0x32, 0x10, 0x0f, 0x1e, 0x2d, 0x3c, 0x4b, 0x5a,
+                                                 0x69, 0x78, 0x87, 0x96, 0xa5, 0xb4, 0xc3, 0xd2, 0xe1, 0xf0};
+
+}  // namespace hitl::fuzz
