@@ -14,7 +14,7 @@ namespace hitl::cli {
 void add_global_options(CLI::App& app, GlobalOptions& options) {
   app.add_flag("--json", options.json, "Machine output: one JSON object per line, a final summary object last")
       ->group("Output");
-  app.add_flag("-v,--verbose", options.verbosity, "More detail on stderr (repeat for more)")->group("Output");
+  app.add_flag("-v,--verbose", options.verbosity, "More detail on stderr: new senders and message ids as they appear; -vv every frame")->group("Output");
   app.add_flag("-q,--quiet", options.quiet, "Print results only, no progress")->group("Output");
   app.add_option("--dialect", options.dialects,
                  "MAVLink XML to load at run time (with its includes), e.g. ardupilotmega.xml; also "

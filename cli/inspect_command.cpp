@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "cli/commands.h"
 #include "engine/mavlink/enums.h"
@@ -53,6 +54,7 @@ class InspectPrinter : public inspect::Inspector::Observer {
       : global_(global), options_(options), show_ids_(std::move(show_ids)), live_table_(stdout_is_tty() && !options.follow) {}
 
   void on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns) override {
+    if (global_.verbosity >= 1) narrate(frame, source);
     if (!shown(frame.msgid)) return;
     if (options_.follow) {
       if (global_.json) print_json_line(frame_json(frame, source, t_ns));
@@ -93,6 +95,17 @@ class InspectPrinter : public inspect::Inspector::Observer {
   }
 
  private:
+  /// -v: say on stderr when a new sender or message id appears; -vv: every frame.
+  void narrate(const mavlink::Frame& frame, const std::string& source) {
+    const std::string name = frame.desc ? frame.desc->name : "#" + std::to_string(frame.msgid) + " (unknown id)";
+    if (sources_.insert(source + "/" + std::to_string(frame.sysid) + "/" + std::to_string(frame.compid)).second)
+      std::cerr << "new source " << source << " sysid " << int{frame.sysid} << " compid " << int{frame.compid}
+                << (frame.version == mavlink::Version::V1 ? " (MAVLink 1)" : "") << '\n';
+    if (ids_.insert(frame.msgid).second) std::cerr << "new message " << name << " from " << source << '\n';
+    if (global_.verbosity >= 2)
+      std::cerr << source << " seq " << int{frame.seq} << " " << mavlink::format_message(frame) << '\n';
+  }
+
   bool shown(uint32_t id) const {
     return std::find(show_ids_.begin(), show_ids_.end(), id) != show_ids_.end();
   }
@@ -102,6 +115,8 @@ class InspectPrinter : public inspect::Inspector::Observer {
   std::vector<uint32_t> show_ids_;
   bool live_table_;
   std::map<uint32_t, std::pair<std::string, nlohmann::json>> latest_;
+  std::set<std::string> sources_;
+  std::set<uint32_t> ids_;
 };
 
 const char* end_reason_name(inspect::Inspector::EndReason reason) {
@@ -174,6 +189,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt) {
     config.parser.accept_unsigned = !opt.require_signed;
   }
 
+  if (global.verbosity >= 1) log_info(global, "hitl inspect: " + std::to_string(messages->size()) + " message definitions known");
   auto inspector = inspect::Inspector::open(config, *messages);
   if (!inspector) {
     log_error(cmd, inspector.error().message);

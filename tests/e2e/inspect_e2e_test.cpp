@@ -309,6 +309,12 @@ TEST(CliE2E, ConfigFileSetsSubcommandOptionsAndRejectsUnknownKeys) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("bogus_key"), std::string::npos) << bad.err;
   EXPECT_EQ(test::run_hitl({"--config", dir + "/missing.toml", "inspect", "--tlog", log}).exit_code, 2);
+
+  // -v names new senders and message ids on stderr; without it, stderr has only the start line.
+  auto verbose = test::run_hitl({"-v", "inspect", "--tlog", log});
+  EXPECT_NE(verbose.err.find("new source tlog sysid 1 compid 1"), std::string::npos) << verbose.err;
+  EXPECT_NE(verbose.err.find("new message ATTITUDE"), std::string::npos) << verbose.err;
+  EXPECT_EQ(test::run_hitl({"inspect", "--tlog", log}).err.find("new message"), std::string::npos);
 }
 
 }  // namespace
