@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   RunState state;
   add_global_options(app, options);
   add_inspect_command(app, options, state);
+  add_sim_command(app, options, state);
 
   try {
     app.parse(argc, argv);

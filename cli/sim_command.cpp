@@ -1,0 +1,301 @@
+// hitl sim: the Simbody x500 bridged to a flight stack over MAVLink (replaces the spec's
+// Gazebo + mavlink_hitl_gazebosim + hitl-gz-start.sh).
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <unistd.h>
+
+#include "cli/commands.h"
+#include "engine/hil/session.h"
+#include "engine/net/socket_address.h"
+#include "engine/model/config_json.h"
+#include "engine/model/x500_defaults.h"
+
+namespace hitl::cli {
+namespace {
+
+struct SimOptions {
+  hil::SessionConfig session;
+  std::string vehicle_file;
+  std::string world_file;
+  std::string px4_sitl;  ///< "tcp:4560" / "udp:14560" when --px4-sitl is given
+  bool px4_sitl_given = false;
+  bool no_vio = false;
+  std::optional<bool> en_vio_output;
+  std::string protocol_version = "2.0";
+  int sysid = hil::kSimulatorSystemId;
+  int compid = hil::kSimulatorComponentId;
+};
+
+nlohmann::json streams_json(const std::map<std::string, hil::StreamCount>& streams, double wall_s) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [name, c] : streams)
+    j[name] = {{"count", c.count}, {"rate_hz", wall_s > 0 ? static_cast<double>(c.count) / wall_s : 0.0}};
+  return j;
+}
+
+nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) {
+  nlohmann::json j;
+  j["type"] = final_summary ? "summary" : "status";
+  j["sim_time_s"] = s.sim_time_s;
+  j["wall_time_s"] = s.wall_time_s;
+  j["real_time_factor"] = s.real_time_factor;
+  j["recent_real_time_factor"] = s.recent_real_time_factor;
+  j["connected"] = s.connected;
+  j["partner"] = s.partner;
+  j["armed"] = s.armed;
+  j["altitude_m"] = s.altitude_m;
+  j["position_ned_m"] = s.p_NED_m;
+  j["motor_commands"] = s.motor_commands;
+  j["rotor_speed_rad_s"] = s.rotor_speed_rad_s;
+  j["steps"] = s.steps;
+  j["late_ticks"] = s.late_ticks;
+  j["resyncs"] = s.resyncs;
+  j["max_lateness_ms"] = s.max_lateness_ms;
+  j["clamped"] = s.actuator_clamped;
+  j["ignored"] = {{"other_address", s.ignored_other_address}, {"other_sysid", s.ignored_other_sysid}};
+  j["actuator_timeouts"] = s.actuator_timeouts;
+  j["actuator_flags"] = s.actuator_flags;
+  j["actuator_mode"] = s.actuator_mode;
+  j["lockstep"] = {{"waits", s.lockstep_waits}, {"fallbacks", s.lockstep_fallbacks}};
+  j["crc_errors"] = s.crc_errors;
+  j["parse_errors"] = s.parse_errors;
+  j["clients"] = s.clients;
+  j["routed"] = {{"to_board", s.routed_to_board}, {"to_clients", s.routed_to_clients}};
+  if (final_summary) {
+    j["sent"] = streams_json(s.sent, s.wall_time_s);
+    j["received"] = streams_json(s.received, s.wall_time_s);
+  } else {
+    nlohmann::json out = nlohmann::json::object(), in = nlohmann::json::object();
+    for (const auto& [name, c] : s.sent) out[name] = {{"count", c.count}, {"rate_hz", c.rate_hz}};
+    for (const auto& [name, c] : s.received) in[name] = {{"count", c.count}, {"rate_hz", c.rate_hz}};
+    j["sent"] = out;
+    j["received"] = in;
+  }
+  return j;
+}
+
+std::string status_line(const hil::SessionSnapshot& s) {
+  auto rate = [](const std::map<std::string, hil::StreamCount>& m, const char* name) {
+    auto it = m.find(name);
+    return it == m.end() ? 0.0 : it->second.rate_hz;
+  };
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "t %7.1f s  rtf %4.2f  out HIL_SENSOR %3.0f GPS %2.0f ODOM %3.0f Hz  in ACT %3.0f Hz  %s  alt %6.2f m  late %llu",
+                s.sim_time_s, s.recent_real_time_factor, rate(s.sent, "HIL_SENSOR"), rate(s.sent, "HIL_GPS"),
+                rate(s.sent, "ODOMETRY"), rate(s.received, "HIL_ACTUATOR_CONTROLS"), s.armed ? "ARMED   " : "disarmed",
+                s.altitude_m, static_cast<unsigned long long>(s.late_ticks));
+  return buf;
+}
+
+class SimPrinter : public hil::Session::Observer {
+ public:
+  explicit SimPrinter(const GlobalOptions& global) : global_(global), tty_(::isatty(STDERR_FILENO) == 1) {}
+  void on_event(const hil::SessionEvent& e) override {
+    end_line();
+    const char* prefix = e.severity == hil::Severity::Warning ? "warning: " : (e.severity == hil::Severity::Error ? "error: " : "");
+    if (e.severity != hil::Severity::Info || !global_.quiet) std::cerr << "hitl sim: " << prefix << e.text << '\n';
+  }
+  void on_status(const hil::SessionSnapshot& s) override {
+    if (global_.json) {
+      print_json_line(snapshot_json(s, false));
+      return;
+    }
+    if (global_.quiet) return;
+    if (tty_) {
+      std::cerr << '\r' << status_line(s) << "\x1b[K" << std::flush;
+      pending_ = true;
+    } else {
+      std::cerr << status_line(s) << '\n';
+    }
+  }
+  void end_line() {
+    if (pending_) std::cerr << '\n';
+    pending_ = false;
+  }
+
+ private:
+  const GlobalOptions& global_;
+  bool tty_;
+  bool pending_ = false;
+};
+
+void print_summary(const hil::SessionSnapshot& s, const char* end) {
+  std::printf("\nsim %.1f s in %.1f s wall (real-time factor %.2f), %llu steps, ended: %s\n", s.sim_time_s, s.wall_time_s,
+              s.real_time_factor, static_cast<unsigned long long>(s.steps), end);
+  std::printf("%-24s %10s %10s\n", "SENT", "COUNT", "RATE Hz");
+  for (const auto& [name, c] : s.sent)
+    std::printf("%-24s %10llu %10.1f\n", name.c_str(), static_cast<unsigned long long>(c.count),
+                s.wall_time_s > 0 ? static_cast<double>(c.count) / s.wall_time_s : 0.0);
+  std::printf("%-24s %10s %10s\n", "RECEIVED", "COUNT", "RATE Hz");
+  for (const auto& [name, c] : s.received)
+    std::printf("%-24s %10llu %10.1f\n", name.c_str(), static_cast<unsigned long long>(c.count),
+                s.wall_time_s > 0 ? static_cast<double>(c.count) / s.wall_time_s : 0.0);
+  if (s.received.empty()) std::printf("(nothing received from the flight stack)\n");
+  std::printf("late ticks %llu (max %.1f ms late, %llu resyncs)  clamped %llu  ignored: other address %llu, other sysid %llu"
+              "  actuator timeouts %llu  lockstep fallbacks %llu\n",
+              static_cast<unsigned long long>(s.late_ticks), s.max_lateness_ms, static_cast<unsigned long long>(s.resyncs),
+              static_cast<unsigned long long>(s.actuator_clamped), static_cast<unsigned long long>(s.ignored_other_address),
+              static_cast<unsigned long long>(s.ignored_other_sysid), static_cast<unsigned long long>(s.actuator_timeouts),
+              static_cast<unsigned long long>(s.lockstep_fallbacks));
+  std::printf("final position NED (%.2f, %.2f, %.2f) m, %s\n", s.p_NED_m[0], s.p_NED_m[1], s.p_NED_m[2],
+              s.armed ? "armed" : "disarmed");
+}
+
+const char* end_name(hil::Session::EndReason r) {
+  switch (r) {
+    case hil::Session::EndReason::Duration: return "duration";
+    case hil::Session::EndReason::Stopped: return "stopped";
+    case hil::Session::EndReason::FlightStackGone: return "flight_stack_gone";
+  }
+  return "?";
+}
+
+int run_sim(const GlobalOptions& global, SimOptions& opt) {
+  const std::string cmd = "sim";
+  auto& cfg = opt.session;
+  auto vehicle = opt.vehicle_file.empty() ? Expected<model::VehicleConfig>(model::x500_vehicle_config())
+                                          : model::load_vehicle_config(opt.vehicle_file);
+  if (!vehicle) {
+    log_error(cmd, "--vehicle: " + vehicle.error().message);
+    return kExitUsage;
+  }
+  auto world = opt.world_file.empty() ? Expected<model::WorldConfig>(model::default_world_config())
+                                      : model::load_world_config(opt.world_file);
+  if (!world) {
+    log_error(cmd, "--world: " + world.error().message);
+    return kExitUsage;
+  }
+  cfg.vehicle = *vehicle;
+  cfg.world = *world;
+  cfg.sysid = static_cast<uint8_t>(opt.sysid);
+  cfg.compid = static_cast<uint8_t>(opt.compid);
+  cfg.protocol = opt.protocol_version == "1.0" ? mavlink::Version::V1 : mavlink::Version::V2;
+  if (opt.no_vio) cfg.vio = false;
+  if (opt.en_vio_output) cfg.vio = *opt.en_vio_output;
+  if (opt.px4_sitl_given) {
+    const std::string& spec = opt.px4_sitl.empty() ? "tcp:4560" : opt.px4_sitl;
+    const auto colon = spec.find(':');
+    const std::string kind = spec.substr(0, colon);
+    if (colon == std::string::npos || (kind != "tcp" && kind != "udp")) {
+      log_error(cmd, "--px4-sitl: '" + spec + "' is not tcp:PORT or udp:PORT");
+      return kExitUsage;
+    }
+    auto port = net::parse_port(spec.substr(colon + 1), "--px4-sitl");
+    if (!port) {
+      log_error(cmd, port.error().message);
+      return kExitUsage;
+    }
+    cfg.link = kind == "tcp" ? hil::FlightStackLink::SitlTcp : hil::FlightStackLink::SitlUdp;
+    cfg.sitl_port = *port;
+  }
+  if (cfg.local_port == 0)
+    std::cerr << "hitl sim: warning: --local-port 0 picks an ephemeral port; a PX4 instance keeps the first port it "
+                 "heard, so a later session on another port gets no answer\n";
+
+  auto session = hil::Session::create(cfg);
+  if (!session) {
+    log_error(cmd, session.error().message);
+    return kExitUsage;
+  }
+  const auto& stop = stop_flag_on_signals();
+  log_info(global, "hitl sim: " + (*session)->describe() + " (Ctrl-C to stop)");
+  SimPrinter printer(global);
+  auto end = (*session)->run(stop, printer);
+  printer.end_line();
+  const auto snap = (*session)->snapshot();
+  if (!end) {
+    log_error(cmd, end.error().message);
+    if (global.json) {
+      auto j = snapshot_json(snap, true);
+      j["end"] = "error";
+      j["error"] = end.error().message;
+      print_json_line(j);
+    }
+    return kExitFailed;
+  }
+  if (global.json) {
+    auto j = snapshot_json(snap, true);
+    j["end"] = end_name(*end);
+    print_json_line(j);
+  } else {
+    print_summary(snap, end_name(*end));
+  }
+  return *end == hil::Session::EndReason::FlightStackGone ? kExitFailed : kExitOk;
+}
+
+}  // namespace
+
+void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
+  auto opt = std::make_shared<SimOptions>();
+  auto& c = opt->session;
+  auto* sub = app.add_subcommand("sim", "Simulate the x500 and bridge it to the board (or PX4 SITL) over MAVLink");
+  sub->footer(
+      "Examples:\n"
+      "  hitl sim                          # board on 127.0.0.1 (adb forward), real time\n"
+      "  hitl sim -i 192.168.101.2         # board over USB-Ethernet\n"
+      "  hitl sim --px4-sitl               # PX4 SITL connects to TCP 4560 (lockstep)\n"
+      "  hitl sim --duration 60 --json     # headless, a JSON summary at the end\n"
+      "Names of the spec's SDF plugin parameters work too (--mavlink-addr, --vio-update-rate, ...).");
+  const char* link = "Board link";
+  sub->add_option("-i,--target-ip,--mavlink-addr", c.target_ip, "The board's IP (USB-Ethernet, or 127.0.0.1 with adb)")
+      ->capture_default_str()->group(link);
+  sub->add_option("--hil-port,--mavlink-udp-remote-port", c.hil_port, "The board's HIL MAVLink port")
+      ->capture_default_str()->check(CLI::Range(1, 65535))->group(link);
+  sub->add_option("--local-port,--mavlink-udp-local-port", c.local_port,
+                  "Fixed local port: PX4 keeps answering the first port it heard")
+      ->capture_default_str()->check(CLI::Range(0, 65535))->group(link);
+  sub->add_option("--bind", c.bind_address, "Local address for the simulator's sockets")->capture_default_str()->group(link);
+  sub->add_option("--px4-sitl", opt->px4_sitl,
+                  "Serve PX4 SITL's simulator_mavlink instead of a board: tcp:PORT (hitl listens, default tcp:4560) or udp:PORT")
+      ->expected(0, 1)->type_name("[tcp:4560|udp:PORT]")->each([opt](const std::string&) { opt->px4_sitl_given = true; })
+      ->group(link);
+  sub->add_option("--sysid", opt->sysid, "System id of the simulator's HEARTBEAT and frames")
+      ->capture_default_str()->check(CLI::Range(1, 255))->group(link);
+  sub->add_option("--compid", opt->compid, "Component id of the simulator")->capture_default_str()->check(CLI::Range(1, 255))->group(link);
+  sub->add_option("--protocol-version", opt->protocol_version, "MAVLink protocol version")
+      ->capture_default_str()->check(CLI::IsMember({"1.0", "2.0"}))->group(link);
+
+  const char* vio = "VIO (ODOMETRY from ground truth)";
+  sub->add_option("--vio-ip,--vio-mavlink-addr", c.vio_ip, "Where voxl-hitl-vio-server listens (default: the target IP)")->group(vio);
+  sub->add_option("--vio-port,--vio-udp-remote-port", c.vio_port, "VIO port")->capture_default_str()->check(CLI::Range(1, 65535))->group(vio);
+  sub->add_option("--vio-rate,--vio-update-rate", c.vio_rate_hz, "ODOMETRY rate, Hz")->capture_default_str()->check(CLI::PositiveNumber)->group(vio);
+  sub->add_flag("--no-vio", opt->no_vio, "Send no ODOMETRY")->group(vio);
+  sub->add_option("--en-vio-output", opt->en_vio_output, "Send ODOMETRY (true/false; the spec's en_vio_output)")->group(vio);
+
+  const char* timing = "Timing";
+  sub->add_option("--speed", c.speed, "Real-time factor to hold; 0 = as fast as possible")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(timing);
+  sub->add_option("--duration", c.duration_s, "Stop after this many simulated seconds (0: until Ctrl-C)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->type_name("S")->group(timing);
+  sub->add_flag("--lockstep,--enable-lockstep", c.lockstep,
+                "Step only after the flight stack answered the previous sensors (a board over UDP: paces the simulator)")
+      ->group(timing);
+  sub->add_option("--lockstep-timeout", c.lockstep_timeout_s, "How long lockstep waits for an answer before stepping on, s")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(timing);
+  sub->add_option("--actuator-timeout", c.actuator_timeout_s, "Motors stop when no HIL_ACTUATOR_CONTROLS came for this long, s")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(timing);
+  sub->add_flag("--realtime", c.realtime, "Ask for SCHED_FIFO and mlockall (says so when not permitted)")->group(timing);
+
+  const char* model = "Model";
+  sub->add_option("--vehicle", opt->vehicle_file, "Vehicle JSON over the compiled-in x500 (docs/engine.md)")
+      ->check(CLI::ExistingFile)->group(model);
+  sub->add_option("--world", opt->world_file, "World JSON: home, magnetic field, wind (docs/engine.md)")
+      ->check(CLI::ExistingFile)->group(model);
+  sub->add_option("--seed", c.seed, "Noise and gust seed (runs repeat)")->capture_default_str()->group(model);
+  sub->add_flag("--no-noise", [opt](int64_t) { opt->session.noise = false; },
+                "Noise-free sensors (tests only: PX4 marks repeating values stale and refuses to arm)")
+      ->group(model);
+
+  const char* route = "Clients and recording";
+  sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local MAVLink clients (other hitl commands); 0: none")
+      ->capture_default_str()->check(CLI::Range(0, 65535))->group(route);
+  sub->add_option("--gcs", c.gcs, "Also route the board's telemetry to a ground station (QGroundControl: 127.0.0.1:14550)")
+      ->type_name("HOST:PORT")->group(route);
+  sub->add_option("--record", c.record_path, "Save everything sent and received to a .tlog")->type_name("FILE.tlog")->group(route);
+  sub->callback([&options, &state, opt]() { state.exit_code = run_sim(options, *opt); });
+}
+
+}  // namespace hitl::cli

@@ -1,0 +1,47 @@
+#include "engine/hil/actuator_input.h"
+
+#include <cmath>
+
+#include "engine/mavlink/enums.h"
+
+namespace hitl::hil {
+
+bool ActuatorInput::on_message(const mavlink::msg::HilActuatorControls& message, uint8_t sysid, double now_s) {
+  if (sysid_ && *sysid_ != sysid) {
+    ++counters_.ignored_sysid;
+    return false;
+  }
+  sysid_ = sysid;
+  ++counters_.received;
+  ++fresh_;
+  bool clamped = false;
+  for (std::size_t i = 0; i < last_.u.size(); ++i) {
+    double u = message.controls[i];
+    if (!std::isfinite(u)) {
+      u = 0.0;
+      clamped = true;
+    } else if (u < 0.0 || u > 1.0) {
+      u = std::clamp(u, 0.0, 1.0);
+      clamped = true;
+    }
+    last_.u[i] = u;
+  }
+  if (clamped) ++counters_.clamped;
+  mode_ = message.mode;
+  flags_ = static_cast<uint8_t>(message.flags);
+  last_.armed = (message.mode & mavlink::mode_flag::kSafetyArmed) != 0;
+  last_s_ = now_s;
+  in_timeout_ = false;
+  return true;
+}
+
+model::MotorCommands ActuatorInput::commands(double now_s) {
+  if (timed_out(now_s)) {
+    if (!in_timeout_ && last_s_) ++counters_.timeouts;
+    in_timeout_ = true;
+    return model::MotorCommands{};
+  }
+  return last_;
+}
+
+}  // namespace hitl::hil

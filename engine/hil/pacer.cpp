@@ -1,0 +1,58 @@
+#include "engine/hil/pacer.h"
+
+#include <cerrno>
+#include <cmath>
+
+namespace hitl::hil {
+namespace {
+
+timespec add_s(timespec t, double s) {
+  const auto ns = static_cast<int64_t>(std::llround(s * 1e9));
+  int64_t total = static_cast<int64_t>(t.tv_nsec) + ns % 1000000000;
+  t.tv_sec += static_cast<time_t>(ns / 1000000000 + total / 1000000000);
+  t.tv_nsec = static_cast<long>(total % 1000000000);
+  if (t.tv_nsec < 0) {
+    t.tv_nsec += 1000000000;
+    t.tv_sec -= 1;
+  }
+  return t;
+}
+
+double to_s(const timespec& t) { return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9; }
+
+}  // namespace
+
+Pacer::Pacer(double period_s, double speed) : wall_period_s_(speed > 0 ? period_s / speed : 0.0), paced_(speed > 0) {}
+
+double Pacer::now_s() {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return to_s(t);
+}
+
+void Pacer::start() {
+  clock_gettime(CLOCK_MONOTONIC, &anchor_);
+  k_ = 0;
+}
+
+void Pacer::wait_next() {
+  ++stats_.ticks;
+  if (!paced_) return;
+  ++k_;
+  const timespec due = add_s(anchor_, static_cast<double>(k_) * wall_period_s_);
+  const double lateness_s = now_s() - to_s(due);
+  if (lateness_s > wall_period_s_) {
+    ++stats_.late;
+    stats_.max_lateness_s = std::max(stats_.max_lateness_s, lateness_s);
+    if (lateness_s > kMaxCatchUp_s) {
+      ++stats_.resyncs;
+      clock_gettime(CLOCK_MONOTONIC, &anchor_);
+      k_ = 0;
+    }
+    return;
+  }
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &due, nullptr) == EINTR) {
+  }
+}
+
+}  // namespace hitl::hil

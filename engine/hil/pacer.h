@@ -1,0 +1,41 @@
+// Paces the session loop on absolute deadlines (clock_nanosleep TIMER_ABSTIME on
+// CLOCK_MONOTONIC), so the rate never drifts: tick k is due at start + k * period / speed.
+// A tick that starts more than one period after its deadline is late: it is counted and the loop
+// catches up by running the following ticks back to back. After a long stall (more than
+// kMaxCatchUp behind) the schedule is re-anchored instead of bursting, and that is counted too.
+#pragma once
+
+#include <cstdint>
+#include <ctime>
+
+namespace hitl::hil {
+
+struct PacerStats {
+  uint64_t ticks = 0;
+  uint64_t late = 0;       ///< ticks that began more than one period after their deadline
+  uint64_t resyncs = 0;    ///< stalls longer than the catch-up window: schedule re-anchored
+  double max_lateness_s = 0;
+};
+
+class Pacer {
+ public:
+  static constexpr double kMaxCatchUp_s = 0.1;
+
+  /// `speed` is the real-time factor to hold (1 = real time); 0 = no pacing, as fast as possible.
+  Pacer(double period_s, double speed);
+  void start();
+  /// Sleeps until the next tick is due (returns at once when behind).
+  void wait_next();
+  const PacerStats& stats() const { return stats_; }
+  /// Monotonic now, in seconds.
+  static double now_s();
+
+ private:
+  double wall_period_s_;
+  bool paced_;
+  timespec anchor_{};
+  uint64_t k_ = 0;  ///< ticks since the anchor
+  PacerStats stats_;
+};
+
+}  // namespace hitl::hil

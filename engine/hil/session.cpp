@@ -1,0 +1,487 @@
+#include "engine/hil/session.h"
+
+#include <sched.h>
+#include <sys/prctl.h>
+#include <sys/mman.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <optional>
+
+#include "engine/hil/actuator_input.h"
+#include "engine/hil/pacer.h"
+#include "engine/hil/sensor_messages.h"
+#include "engine/mavlink/enums.h"
+#include "engine/mavlink/frame_encoder.h"
+#include "engine/mavlink/frame_parser.h"
+#include "engine/mavlink/messages.h"
+#include "engine/mavlink/tlog.h"
+#include "engine/mavlink/wire_units.h"
+#include "engine/model/multicopter.h"
+#include "engine/net/client_port.h"
+#include "engine/net/tcp_server.h"
+#include "engine/net/udp_endpoint.h"
+#include "engine/sensors/sensor_suite.h"
+
+namespace hitl::hil {
+namespace {
+
+int64_t unix_now_us() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+/// Messages the session itself exchanges with the flight stack; never routed to or from clients.
+bool is_hil_message(uint32_t msgid) {
+  return msgid == mavlink::msg::HilSensor::kId || msgid == mavlink::msg::HilGps::kId ||
+         msgid == mavlink::msg::HilActuatorControls::kId || msgid == mavlink::msg::HilStateQuaternion::kId;
+}
+
+struct Counter {
+  uint64_t count = 0;
+  uint64_t window = 0;
+  double rate_hz = 0;
+};
+
+}  // namespace
+
+struct Session::Impl {
+  SessionConfig config;
+  mavlink::MessageSet messages = mavlink::MessageSet::compiled();
+  std::unique_ptr<model::Multicopter> model;
+  std::optional<sensors::SensorSuite> sensors;
+  mavlink::FrameEncoder encoder{kSimulatorSystemId, kSimulatorComponentId};      ///< the HIL link's sequence
+  mavlink::FrameEncoder vio_encoder{kSimulatorSystemId, kSimulatorComponentId};  ///< the VIO link's own sequence
+  std::optional<mavlink::FrameParser> stack_parser;
+  std::optional<mavlink::FrameParser> client_parser;
+
+  std::optional<net::UdpEndpoint> hil_udp;
+  std::optional<net::SocketAddress> target;
+  std::optional<net::TcpServer> sitl_tcp;
+  std::vector<uint8_t> tcp_tx;
+  std::optional<net::UdpEndpoint> vio;
+  std::optional<net::ClientPort> clients;
+  std::optional<mavlink::TlogWriter> recorder;
+
+  ActuatorInput actuators{0.5};
+  std::optional<Pacer> pacer;
+
+  std::map<uint32_t, Counter> sent;
+  std::map<uint32_t, Counter> received;
+  uint64_t ignored_other_address = 0;
+  uint64_t lockstep_waits = 0;
+  uint64_t lockstep_fallbacks = 0;
+  uint64_t routed_to_board = 0;
+  uint64_t routed_to_clients = 0;
+  double next_vio_s = 0;
+  uint64_t vio_k = 0;
+  double next_heartbeat_s = 0;
+  double start_wall_s = 0;
+  double first_sensor_wall_s = -1;
+  bool warned_no_answer = false;
+  bool warned_lockstep = false;
+  bool stack_gone = false;
+  double window_start_wall_s = 0;
+  double window_start_sim_s = 0;
+  double recent_rtf = 0;
+
+  mutable std::mutex snapshot_mutex;
+  SessionSnapshot published;
+
+  bool sitl() const { return config.link == FlightStackLink::SitlTcp || config.link == FlightStackLink::SitlUdp; }
+  bool lockstep() const { return config.lockstep || sitl(); }
+
+  const char* name_of(uint32_t id) const {
+    const auto* d = messages.find(id);
+    return d ? d->name.c_str() : "?";
+  }
+
+  // --- sending -------------------------------------------------------------------------------
+  void record(std::span<const uint8_t> bytes) {
+    if (recorder) recorder->write(static_cast<uint64_t>(unix_now_us()), bytes);
+  }
+
+  template <class M>
+  void send_to_stack(const M& message) {
+    mavlink::FrameBuffer buf;
+    const std::size_t n = encoder.encode(message, buf);
+    if (n == 0) return;
+    const std::span<const uint8_t> bytes(buf.data(), n);
+    if (sitl_tcp) tcp_tx.insert(tcp_tx.end(), bytes.begin(), bytes.end());
+    else (void)hil_udp->queue(bytes);
+    record(bytes);
+    auto& c = sent[M::kId];
+    ++c.count;
+    ++c.window;
+  }
+
+  template <class M>
+  void send_to_vio(const M& message) {
+    mavlink::FrameBuffer buf;
+    const std::size_t n = vio_encoder.encode(message, buf);
+    if (n == 0) return;
+    (void)vio->send({buf.data(), n});
+    record({buf.data(), n});
+    auto& c = sent[M::kId];
+    ++c.count;
+    ++c.window;
+  }
+
+  void flush_to_stack() {
+    if (sitl_tcp) {
+      if (!tcp_tx.empty() && sitl_tcp->connected() && !sitl_tcp->send(tcp_tx)) stack_gone = true;
+      tcp_tx.clear();
+    } else {
+      (void)hil_udp->flush();
+    }
+  }
+
+  void forward_to_stack(std::span<const uint8_t> bytes) {
+    if (sitl_tcp) tcp_tx.insert(tcp_tx.end(), bytes.begin(), bytes.end());
+    else (void)hil_udp->queue(bytes);
+    record(bytes);
+    ++routed_to_board;
+  }
+
+  // --- receiving -----------------------------------------------------------------------------
+  void on_stack_frame(const mavlink::Frame& f, double now_s) {
+    record(f.bytes());
+    auto& c = received[f.msgid];
+    ++c.count;
+    ++c.window;
+    if (f.is<mavlink::msg::HilActuatorControls>()) {
+      actuators.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, now_s);
+    } else if (!is_hil_message(f.msgid) && clients) {
+      clients->broadcast(f.bytes());
+      ++routed_to_clients;
+    }
+  }
+
+  void drain(double now_s) {
+    if (sitl_tcp) {
+      while (sitl_tcp->connected()) {
+        auto bytes = sitl_tcp->receive();
+        if (!bytes) {
+          stack_gone = true;
+          break;
+        }
+        if (bytes->empty()) break;
+        stack_parser->feed(*bytes, [&](const mavlink::Frame& f) { on_stack_frame(f, now_s); });
+      }
+    } else {
+      while (auto d = hil_udp->receive()) {
+        if (target && d->from != *target) {  // PX4 answers from its own port; anything else is not our board
+          ++ignored_other_address;
+          continue;
+        }
+        stack_parser->parse_datagram(d->bytes, [&](const mavlink::Frame& f) { on_stack_frame(f, now_s); });
+      }
+    }
+    if (clients) {
+      while (auto d = clients->receive()) {
+        const auto from = d->from;
+        client_parser->parse_datagram(d->bytes, [&](const mavlink::Frame& f) {
+          if (is_hil_message(f.msgid)) return;
+          forward_to_stack(f.bytes());
+          clients->broadcast(f.bytes(), from);  // clients see each other, like a router
+        });
+      }
+    }
+  }
+
+  bool wait_stack_readable(int timeout_ms) {
+    if (sitl_tcp) return sitl_tcp->wait_readable(timeout_ms);
+    return hil_udp->wait_readable(timeout_ms);
+  }
+
+  // --- the step ------------------------------------------------------------------------------
+  void lockstep_wait(Observer& observer) {
+    if (!lockstep() || !actuators.ever_received()) return;  // PX4 sends nothing during its first ~1.1 s
+    ++lockstep_waits;
+    const double deadline = Pacer::now_s() + config.lockstep_timeout_s;
+    while (actuators.take_new() == 0 && !stack_gone) {
+      const double left_s = deadline - Pacer::now_s();
+      if (left_s <= 0 || !wait_stack_readable(static_cast<int>(std::ceil(left_s * 1000)))) {
+        if (Pacer::now_s() < deadline) continue;
+        ++lockstep_fallbacks;
+        if (!warned_lockstep) {
+          warned_lockstep = true;
+          observer.on_event({Severity::Warning, "lockstep: no HIL_ACTUATOR_CONTROLS within " +
+                                                    std::to_string(static_cast<int>(config.lockstep_timeout_s * 1000)) +
+                                                    " ms of the last HIL_SENSOR; stepping on without it (counted)"});
+        }
+        return;
+      }
+      drain(Pacer::now_s());
+    }
+  }
+
+  Status step(Observer& observer) {
+    const double now_s = Pacer::now_s();
+    drain(now_s);
+    lockstep_wait(observer);
+    model->set_motor_commands(actuators.commands(Pacer::now_s()));
+    if (auto st = model->step(); !st) return st;
+    const auto& state = model->state();
+    const auto frame = sensors->sample_due(state);
+    const uint64_t t_us = mavlink::wire::s_to_us(state.time_s);
+    if (frame.imu || frame.mag || frame.baro) {
+      send_to_stack(make_hil_sensor(frame, t_us));
+      if (first_sensor_wall_s < 0) first_sensor_wall_s = Pacer::now_s();
+    }
+    if (frame.gps) send_to_stack(make_hil_gps(*frame.gps, t_us));
+    if (state.time_s + 1e-9 >= next_heartbeat_s) {
+      next_heartbeat_s += 1.0;
+      mavlink::msg::Heartbeat hb;
+      hb.type = static_cast<uint8_t>(mavlink::MavType::Generic);
+      hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
+      hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
+      hb.mavlink_version = mavlink::kMavlinkVersion;
+      send_to_stack(hb);
+    }
+    flush_to_stack();
+    actuators.take_new();  // answers counted from here on belong to these sensors
+    if (vio && state.time_s + 1e-9 >= next_vio_s) {
+      ++vio_k;
+      next_vio_s = static_cast<double>(vio_k) / config.vio_rate_hz;
+      send_to_vio(make_odometry(frame.truth, t_us));
+    }
+    if (!warned_no_answer && first_sensor_wall_s >= 0 && !actuators.ever_received() &&
+        Pacer::now_s() - first_sensor_wall_s > config.no_answer_warning_s) {
+      warned_no_answer = true;
+      observer.on_event({Severity::Warning, no_answer_text()});
+    }
+    return Ok{};
+  }
+
+  std::string no_answer_text() const {
+    if (sitl())
+      return "no HIL_ACTUATOR_CONTROLS from PX4 SITL yet; still sending. Is PX4 started with a simulator "
+             "airframe (e.g. 10016 none_iris)?";
+    return "no HIL_ACTUATOR_CONTROLS from " + target->to_string() + " within " +
+           std::to_string(static_cast<int>(config.no_answer_warning_s)) +
+           " s of the first HIL_SENSOR; still sending. Likely causes: the board's HIL instance is locked to an "
+           "earlier session's port (restart PX4 on the board: voxl-px4-hitl start), HIL is not enabled (SYS_HITL must "
+           "be 1), or the wrong IP (-i)";
+  }
+
+  // --- snapshot ------------------------------------------------------------------------------
+  SessionSnapshot make_snapshot() const {
+    SessionSnapshot s;
+    const auto& st = model->state();
+    s.sim_time_s = st.time_s;
+    s.wall_time_s = Pacer::now_s() - start_wall_s;
+    s.real_time_factor = s.wall_time_s > 0 ? s.sim_time_s / s.wall_time_s : 0;
+    s.recent_real_time_factor = recent_rtf;
+    for (const auto& [id, c] : sent) s.sent[name_of(id)] = StreamCount{c.count, c.rate_hz};
+    for (const auto& [id, c] : received) s.received[name_of(id)] = StreamCount{c.count, c.rate_hz};
+    s.connected = sitl_tcp ? sitl_tcp->connected() : actuators.ever_received();
+    if (sitl_tcp && sitl_tcp->client()) s.partner = sitl_tcp->client()->to_string();
+    else if (target) s.partner = target->to_string();
+    s.armed = actuators.armed();
+    s.motor_commands = actuators.last_controls();
+    s.rotor_speed_rad_s = st.rotor_speed_rad_s;
+    s.altitude_m = st.p_ENU_m.z();
+    s.p_NED_m = {st.p_ENU_m.y(), st.p_ENU_m.x(), -st.p_ENU_m.z()};
+    s.on_ground = st.on_ground;
+    s.steps = st.step;
+    s.late_ticks = pacer->stats().late;
+    s.resyncs = pacer->stats().resyncs;
+    s.max_lateness_ms = pacer->stats().max_lateness_s * 1000.0;
+    s.actuator_clamped = actuators.counters().clamped;
+    s.ignored_other_address = ignored_other_address;
+    s.ignored_other_sysid = actuators.counters().ignored_sysid;
+    s.actuator_timeouts = actuators.counters().timeouts;
+    s.lockstep_waits = lockstep_waits;
+    s.lockstep_fallbacks = lockstep_fallbacks;
+    s.crc_errors = stack_parser->stats().crc_errors;
+    s.parse_errors = stack_parser->stats().parse_errors;
+    s.clients = clients ? clients->client_count() : 0;
+    s.routed_to_board = routed_to_board;
+    s.routed_to_clients = routed_to_clients;
+    s.actuator_flags = actuators.last_flags();
+    s.actuator_mode = actuators.last_mode();
+    return s;
+  }
+
+  void publish() {
+    auto s = make_snapshot();
+    std::lock_guard<std::mutex> lock(snapshot_mutex);
+    published = std::move(s);
+  }
+
+  void roll_window() {
+    const double now = Pacer::now_s();
+    const double dt = now - window_start_wall_s;
+    if (dt <= 0) return;
+    for (auto* m : {&sent, &received})
+      for (auto& [id, c] : *m) {
+        c.rate_hz = static_cast<double>(c.window) / dt;
+        c.window = 0;
+      }
+    recent_rtf = (model->state().time_s - window_start_sim_s) / dt;
+    window_start_wall_s = now;
+    window_start_sim_s = model->state().time_s;
+  }
+};
+
+Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) {
+  auto impl = std::make_unique<Impl>();
+  impl->config = config;
+  model::VehicleConfig vehicle = config.noise ? config.vehicle : model::with_noise_disabled(config.vehicle);
+  auto mc = model::Multicopter::create(vehicle, config.world, config.seed);
+  if (!mc) return mc.error();
+  impl->model = std::move(mc.value());
+  impl->sensors.emplace(vehicle, config.world, config.seed);
+  impl->encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
+  impl->vio_encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
+  impl->stack_parser.emplace(impl->messages);
+  impl->client_parser.emplace(impl->messages);
+  impl->actuators = ActuatorInput(config.actuator_timeout_s);
+  if (!(config.vio_rate_hz > 0)) return Error{"--vio-rate must be > 0"};
+  if (!(config.speed >= 0)) return Error{"--speed must be >= 0 (0: as fast as possible)"};
+
+  if (config.link == FlightStackLink::SitlTcp) {
+    auto server = net::TcpServer::listen(config.bind_address, config.sitl_port, "--px4-sitl");
+    if (!server) return server.error();
+    impl->sitl_tcp.emplace(std::move(server.value()));
+  } else {
+    const uint16_t remote = config.link == FlightStackLink::SitlUdp ? config.sitl_port : config.hil_port;
+    auto target = net::SocketAddress::resolve(config.target_ip, remote);
+    if (!target) return Error{"--target-ip: " + target.error().message};
+    impl->target = *target;
+    net::UdpEndpoint::Config ec;
+    ec.name = "HIL link (--local-port)";
+    ec.bind_address = config.bind_address;
+    ec.bind_port = config.local_port;
+    ec.peer = *target;
+    ec.policy = net::PartnerPolicy::Fixed;
+    auto ep = net::UdpEndpoint::open(ec);
+    if (!ep) return ep.error();
+    impl->hil_udp.emplace(std::move(ep.value()));
+  }
+  if (config.vio) {
+    auto vio_target = net::SocketAddress::resolve(config.vio_ip.empty() ? config.target_ip : config.vio_ip, config.vio_port);
+    if (!vio_target) return Error{"--vio-ip: " + vio_target.error().message};
+    net::UdpEndpoint::Config ec;
+    ec.name = "VIO link";
+    ec.bind_address = config.bind_address;
+    ec.bind_port = 0;
+    ec.peer = *vio_target;
+    ec.policy = net::PartnerPolicy::Fixed;
+    auto ep = net::UdpEndpoint::open(ec);
+    if (!ep) return ep.error();
+    impl->vio.emplace(std::move(ep.value()));
+  }
+  std::vector<net::SocketAddress> fixed;
+  if (!config.gcs.empty()) {
+    auto gcs = net::SocketAddress::parse(config.gcs, "--gcs");
+    if (!gcs) return gcs.error();
+    fixed.push_back(*gcs);
+  }
+  if (config.clients_port != 0 || !fixed.empty()) {
+    auto cp = net::ClientPort::open(config.clients_bind, config.clients_port, fixed);
+    if (!cp) return Error{cp.error().message + " (is another hitl sim or hitl bridge running? --clients 0 disables)"};
+    impl->clients.emplace(std::move(cp.value()));
+  }
+  if (!config.record_path.empty()) {
+    auto w = mavlink::TlogWriter::open(config.record_path);
+    if (!w) return w.error();
+    impl->recorder.emplace(std::move(w.value()));
+  }
+  impl->pacer.emplace(kStepPeriod_s, config.speed);
+  return std::unique_ptr<Session>(new Session(std::move(impl)));
+}
+
+Session::Session(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Session::~Session() = default;
+
+std::string Session::describe() const {
+  const auto& c = impl_->config;
+  std::string out;
+  if (impl_->sitl_tcp) out = "serving PX4 SITL on TCP " + impl_->sitl_tcp->local_address().to_string() + " (lockstep)";
+  else
+    out = "HIL_SENSOR/HIL_GPS to " + impl_->target->to_string() + " from " + impl_->hil_udp->local_address().to_string() +
+          (c.lockstep ? " (lockstep)" : "");
+  if (impl_->vio)
+    out += ", ODOMETRY to " + impl_->vio->partner()->to_string() + " at " + std::to_string(static_cast<int>(c.vio_rate_hz)) + " Hz";
+  if (impl_->clients && impl_->clients->local_address())
+    out += ", clients on " + impl_->clients->local_address()->to_string();
+  if (!c.gcs.empty()) out += ", GCS " + c.gcs;
+  char speed[64];
+  std::snprintf(speed, sizeof speed, c.speed > 0 ? ", speed %gx" : ", as fast as possible", c.speed);
+  return out + speed;
+}
+
+Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observer& observer) {
+  Impl& s = *impl_;
+  if (!s.config.noise)
+    observer.on_event({Severity::Warning,
+                       "--no-noise: PX4 marks a sensor stale after ~100 identical values, so a flight stack on the "
+                       "other end will refuse to arm; use it for tests only"});
+  if (s.config.realtime) {
+    sched_param sp{};
+    sp.sched_priority = 50;
+    const bool fifo = sched_setscheduler(0, SCHED_FIFO, &sp) == 0;
+    const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
+    observer.on_event({fifo && locked ? Severity::Info : Severity::Warning,
+                       std::string("--realtime: SCHED_FIFO ") + (fifo ? "granted" : "not permitted") + ", mlockall " +
+                           (locked ? "granted" : "not permitted") +
+                           (fifo && locked ? "" : " (run as root or grant CAP_SYS_NICE and CAP_IPC_LOCK)")});
+  }
+  if (s.sitl_tcp) {
+    observer.on_event({Severity::Info, "waiting for PX4 SITL to connect to TCP " + s.sitl_tcp->local_address().to_string()});
+    while (!s.sitl_tcp->accept_client(200)) {
+      if (stop.load()) return EndReason::Stopped;
+    }
+    observer.on_event({Severity::Info, "PX4 SITL connected from " + s.sitl_tcp->client()->to_string()});
+  }
+  // The default 50 us timer slack would show up as jitter in every HIL_SENSOR interval.
+  prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  s.start_wall_s = Pacer::now_s();
+  s.window_start_wall_s = s.start_wall_s;
+  s.pacer->start();
+  double next_status_s = s.start_wall_s + 1.0;
+  double next_publish_s = s.start_wall_s;
+  EndReason reason = EndReason::Stopped;
+  for (;;) {
+    if (stop.load()) break;
+    if (s.config.duration_s > 0 && s.model->state().time_s + 1e-9 >= s.config.duration_s) {
+      reason = EndReason::Duration;
+      break;
+    }
+    if (auto st = s.step(observer); !st) {
+      s.publish();
+      return Error{st.error().message};
+    }
+    if (s.stack_gone) {
+      observer.on_event({Severity::Error, "PX4 SITL disconnected; PX4 never reconnects to a simulator, so this session "
+                                          "ends (restart PX4 and hitl sim together)"});
+      reason = EndReason::FlightStackGone;
+      break;
+    }
+    const double now = Pacer::now_s();
+    if (now >= next_publish_s) {
+      next_publish_s = now + 0.1;
+      s.publish();
+    }
+    if (now >= next_status_s) {
+      next_status_s += 1.0;
+      s.roll_window();
+      s.publish();
+      observer.on_status(snapshot());
+    }
+    s.pacer->wait_next();
+  }
+  if (s.recorder) s.recorder->flush();
+  s.roll_window();
+  s.publish();
+  return reason;
+}
+
+SessionSnapshot Session::snapshot() const {
+  std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);
+  return impl_->published;
+}
+
+}  // namespace hitl::hil

@@ -1,0 +1,68 @@
+// Everything a HITL session needs to know, filled by defaults < config file < flags in cli/.
+// Defaults are the spec's ports and rates (DESIGN.md §4).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "engine/mavlink/frame.h"
+#include "engine/model/vehicle_config.h"
+#include "engine/model/world_config.h"
+
+namespace hitl::hil {
+
+inline constexpr uint16_t kBoardHilPort = 14560;     ///< the board's HIL MAVLink instance
+inline constexpr uint16_t kSimLocalPort = 14561;     ///< the simulator's fixed local port
+inline constexpr uint16_t kBoardVioPort = 14570;     ///< voxl-hitl-vio-server
+inline constexpr uint16_t kSessionClientPort = 14600;  ///< local clients while a session runs
+inline constexpr uint16_t kPx4SitlTcpPort = 4560;    ///< PX4 SITL's simulator_mavlink (instance 0)
+inline constexpr double kStepPeriod_s = 0.004;       ///< physics step and HIL_SENSOR period
+inline constexpr double kVioRate_hz = 250.0;
+inline constexpr uint8_t kSimulatorSystemId = 250;   ///< the simulator's own identity (not a vehicle)
+inline constexpr uint8_t kSimulatorComponentId = 1;
+
+/// Who is on the other end of the HIL link.
+enum class FlightStackLink {
+  BoardUdp,  ///< a VOXL2 / PX4 in HIL mode: UDP to target:hil_port from local_port
+  SitlTcp,   ///< PX4 SITL's simulator_mavlink: hitl listens on TCP, PX4 connects, lockstep on PX4's clock
+  SitlUdp    ///< the same over UDP (simulator_mavlink built for UDP)
+};
+
+struct SessionConfig {
+  FlightStackLink link = FlightStackLink::BoardUdp;
+  std::string target_ip = "127.0.0.1";   ///< -i / --target-ip / --mavlink-addr
+  uint16_t hil_port = kBoardHilPort;      ///< --hil-port / --mavlink-udp-remote-port
+  uint16_t local_port = kSimLocalPort;    ///< --local-port / --mavlink-udp-local-port
+  std::string bind_address = "0.0.0.0";
+  uint16_t sitl_port = kPx4SitlTcpPort;   ///< --px4-sitl tcp:PORT / udp:PORT
+
+  bool vio = true;                        ///< --no-vio / --en-vio-output
+  std::string vio_ip;                     ///< --vio-ip (empty: the target IP)
+  uint16_t vio_port = kBoardVioPort;      ///< --vio-port / --vio-udp-remote-port
+  double vio_rate_hz = kVioRate_hz;       ///< --vio-rate / --vio-update-rate
+
+  uint8_t sysid = kSimulatorSystemId;     ///< --sysid: the simulator's HEARTBEAT and frames
+  uint8_t compid = kSimulatorComponentId;
+  mavlink::Version protocol = mavlink::Version::V2;  ///< --protocol-version 1.0|2.0
+
+  double speed = 1.0;                     ///< --speed: real-time factor; 0 = as fast as possible
+  double duration_s = 0;                  ///< --duration: simulated seconds, 0 = until stopped
+  bool lockstep = false;                  ///< --lockstep / --enable-lockstep
+  double lockstep_timeout_s = 0.5;        ///< --lockstep-timeout
+  bool realtime = false;                  ///< --realtime: SCHED_FIFO + mlockall when permitted
+  double actuator_timeout_s = 0.5;        ///< --actuator-timeout
+  double no_answer_warning_s = 2.0;       ///< say so when nothing came back this long after the first HIL_SENSOR
+
+  model::VehicleConfig vehicle;           ///< --vehicle FILE over the compiled-in x500
+  model::WorldConfig world;               ///< --world FILE
+  uint64_t seed = 1;                      ///< --seed
+  bool noise = true;                      ///< --no-noise
+  std::string record_path;                ///< --record FILE.tlog: everything sent and received
+
+  uint16_t clients_port = kSessionClientPort;  ///< --clients (0: none)
+  std::string clients_bind = "127.0.0.1";
+  std::string gcs;                        ///< --gcs HOST:PORT (empty: none)
+};
+
+}  // namespace hitl::hil
