@@ -24,6 +24,7 @@ class Process {
   int wait(std::chrono::milliseconds timeout);
   void signal(int sig);
   bool running();
+  int pid() const { return static_cast<int>(pid_); }
 
   /// Waits until stderr (or stdout) contains `text`; false on timeout or exit.
   bool wait_for_stderr(const std::string& text, std::chrono::milliseconds timeout);
