@@ -51,7 +51,7 @@ struct Session::Impl {
   std::unique_ptr<model::Multicopter> model;
   std::optional<sensors::SensorSuite> sensors;
   mavlink::FrameEncoder encoder{kSimulatorSystemId, kSimulatorComponentId};      ///< the HIL link's sequence
-  mavlink::FrameEncoder vio_encoder{kSimulatorSystemId, kSimulatorComponentId};  ///< the VIO link's own sequence
+  mavlink::FrameEncoder vio_encoder{kSimulatorSystemId, kVioComponentId};  ///< the VIO link's own sequence
   std::optional<mavlink::FrameParser> stack_parser;
   std::optional<mavlink::FrameParser> client_parser;
 
@@ -334,7 +334,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   impl->model = std::move(mc.value());
   impl->sensors.emplace(vehicle, config.world, config.seed);
   impl->encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
-  impl->vio_encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
+  impl->vio_encoder = mavlink::FrameEncoder(config.sysid, kVioComponentId, config.protocol);
   impl->stack_parser.emplace(impl->messages);
   impl->client_parser.emplace(impl->messages);
   impl->actuators = ActuatorInput(config.actuator_timeout_s);

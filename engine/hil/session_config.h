@@ -21,6 +21,9 @@ inline constexpr double kStepPeriod_s = 0.004;       ///< physics step and HIL_S
 inline constexpr double kVioRate_hz = 250.0;
 inline constexpr uint8_t kSimulatorSystemId = 250;   ///< the simulator's own identity (not a vehicle)
 inline constexpr uint8_t kSimulatorComponentId = 1;
+/// ODOMETRY comes from its own component (MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY), with its own
+/// sequence, so a recording of both links shows no false loss.
+inline constexpr uint8_t kVioComponentId = 197;
 
 /// Who is on the other end of the HIL link.
 enum class FlightStackLink {

@@ -180,6 +180,7 @@ TEST(SimE2E, SendsHilSensorWithExactFieldsUpdatedCadenceAndUnits) {
 
   const auto odo = vio.receive_for(300ms);
   ASSERT_FALSE(odo.empty());
+  EXPECT_EQ(odo.back().compid, 197);  // MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY, its own sequence
   const auto o = odo.back().as<msg::Odometry>();
   EXPECT_EQ(o.frame_id, 1);
   EXPECT_EQ(o.child_frame_id, 12);
