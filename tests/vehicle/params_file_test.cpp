@@ -1,0 +1,65 @@
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "engine/vehicle/params_file.h"
+
+namespace hitl::vehicle {
+namespace {
+
+TEST(ParamsFile, CompiledDefaultsHoldTheSpecsHitlSet) {
+  std::map<std::string, ParamValue> p;
+  for (const auto& param : hitl_default_params()) p[param.name] = param.value;
+  ASSERT_GE(p.size(), 40u);  // the data file parsed (a parse error would leave it empty)
+  // The spec's "HITL Default Parameters" tables.
+  EXPECT_EQ(p.at("SYS_AUTOSTART"), ParamValue::int32(1001));
+  EXPECT_EQ(p.at("SYS_HITL"), ParamValue::int32(1));
+  EXPECT_EQ(p.at("IMU_GYRO_RATEMAX"), ParamValue::int32(800));
+  EXPECT_EQ(p.at("CAL_ACC0_ID"), ParamValue::int32(1310988));
+  EXPECT_EQ(p.at("CAL_GYRO0_ID"), ParamValue::int32(1310988));
+  EXPECT_EQ(p.at("CAL_MAG0_ID"), ParamValue::int32(197388));
+  EXPECT_EQ(p.at("EKF2_GPS_CHECK"), ParamValue::int32(0));
+  EXPECT_EQ(p.at("EKF2_HGT_REF"), ParamValue::int32(1));
+  EXPECT_EQ(p.at("EKF2_MAG_TYPE"), ParamValue::int32(1));
+  EXPECT_EQ(p.at("EKF2_MAG_CHECK"), ParamValue::int32(0));
+  EXPECT_EQ(p.at("EKF2_BARO_CTRL"), ParamValue::int32(1));
+  EXPECT_EQ(p.at("EKF2_GPS_CTRL"), ParamValue::int32(7));
+  EXPECT_EQ(p.at("CBRK_SUPPLY_CHK"), ParamValue::int32(894281));
+  EXPECT_EQ(p.at("CBRK_IO_SAFETY"), ParamValue::int32(22027));
+  EXPECT_EQ(p.at("COM_ARM_MAG_STR"), ParamValue::int32(0));
+  EXPECT_EQ(p.at("COM_ARM_EKF_POS"), ParamValue::real32(1.0f));
+  EXPECT_EQ(p.at("COM_ARM_EKF_VEL"), ParamValue::real32(1.0f));
+  EXPECT_EQ(p.at("CA_ROTOR0_PX"), ParamValue::real32(0.174f));
+  EXPECT_EQ(p.at("CA_ROTOR1_PY"), ParamValue::real32(-0.174f));
+  EXPECT_EQ(p.at("CA_ROTOR2_KM"), ParamValue::real32(-0.05f));
+  EXPECT_EQ(p.at("CA_ROTOR3_PY"), ParamValue::real32(0.174f));
+}
+
+TEST(ParamsFile, RoundTripAndErrorsNameTheLine) {
+  std::vector<Param> params{{"SYS_HITL", ParamValue::int32(1)}, {"MPC_XY_P", ParamValue::real32(0.95f)}};
+  const auto text = format_params(params);
+  auto back = parse_params(text, "x.params");
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  ASSERT_EQ(back->size(), 2u);
+  EXPECT_EQ((*back)[0].value, params[0].value);
+  EXPECT_EQ((*back)[1].value, params[1].value);
+  auto bad = parse_params("1 1 SYS_HITL one 6\n", "x.params");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("x.params:1: SYS_HITL"), std::string::npos) << bad.error().message;
+  EXPECT_FALSE(parse_params("1 1 A 1 7\n", "x").ok());
+  EXPECT_FALSE(parse_params("1 1 A\n", "x").ok());
+  EXPECT_FALSE(parse_params("1 1 A 9999999999 6\n", "x").ok());
+  EXPECT_FALSE(parse_params("1 1 ABCDEFGHIJKLMNOPQ 1 6\n", "x").ok());
+  EXPECT_FALSE(load_params_file("/nonexistent.params").ok());
+}
+
+TEST(ParamsFile, Int32TravelsBytewiseInTheFloatField) {
+  const auto v = ParamValue::int32(1310988);
+  const float wire = encode_param_float(v);
+  EXPECT_NE(wire, 1310988.0f);  // not converted, reinterpreted
+  EXPECT_EQ(decode_param_float(wire, ParamType::Int32), v);
+  EXPECT_EQ(decode_param_float(0.5f, ParamType::Real32), ParamValue::real32(0.5f));
+}
+
+}  // namespace
+}  // namespace hitl::vehicle
