@@ -1,5 +1,6 @@
 #include "engine/hil/sensor_messages.h"
 
+#include <array>
 #include <cmath>
 
 #include "engine/mavlink/hil_sensor_fields.h"
@@ -12,6 +13,11 @@ constexpr uint8_t kMavFrameLocalNed = 1;
 constexpr uint8_t kMavFrameBodyFrd = 12;
 constexpr uint8_t kMavEstimatorTypeVio = 3;
 constexpr float kGravity_m_s2 = 9.80665f;
+
+/// A quaternion as MAVLink carries it: w, x, y, z.
+std::array<float, 4> wxyz(const Eigen::Quaterniond& q) {
+  return {static_cast<float>(q.w()), static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())};
+}
 
 // Indices of the diagonal in MAVLink's 21-element upper-right triangle of a 6x6 covariance.
 constexpr int kCovarianceDiagonal[6] = {0, 6, 11, 15, 18, 20};
@@ -77,8 +83,7 @@ mavlink::msg::Odometry make_odometry(const sensors::GroundTruth& truth, uint64_t
   m.x = static_cast<float>(truth.p_NED_m.x());
   m.y = static_cast<float>(truth.p_NED_m.y());
   m.z = static_cast<float>(truth.p_NED_m.z());
-  m.q = {static_cast<float>(truth.q_FRD_to_NED.w()), static_cast<float>(truth.q_FRD_to_NED.x()),
-         static_cast<float>(truth.q_FRD_to_NED.y()), static_cast<float>(truth.q_FRD_to_NED.z())};
+  m.q = wxyz(truth.q_FRD_to_NED);
   m.vx = static_cast<float>(truth.v_FRD_m_s.x());
   m.vy = static_cast<float>(truth.v_FRD_m_s.y());
   m.vz = static_cast<float>(truth.v_FRD_m_s.z());
@@ -101,8 +106,7 @@ mavlink::msg::HilStateQuaternion make_hil_state_quaternion(const sensors::Ground
   namespace w = mavlink::wire;
   mavlink::msg::HilStateQuaternion m;
   m.time_usec = time_usec;
-  m.attitude_quaternion = {static_cast<float>(truth.q_FRD_to_NED.w()), static_cast<float>(truth.q_FRD_to_NED.x()),
-                           static_cast<float>(truth.q_FRD_to_NED.y()), static_cast<float>(truth.q_FRD_to_NED.z())};
+  m.attitude_quaternion = wxyz(truth.q_FRD_to_NED);
   m.rollspeed = static_cast<float>(truth.w_FRD_rad_s.x());
   m.pitchspeed = static_cast<float>(truth.w_FRD_rad_s.y());
   m.yawspeed = static_cast<float>(truth.w_FRD_rad_s.z());
