@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   add_global_options(app, options);
   add_inspect_command(app, options, state);
   add_sim_command(app, options, state);
+  add_target_command(app, options, state);
 
   try {
     app.parse(argc, argv);

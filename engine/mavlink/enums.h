@@ -23,6 +23,54 @@ inline constexpr uint8_t kSafetyArmed = 128;
 
 inline constexpr uint8_t kMavlinkVersion = 3;  ///< HEARTBEAT.mavlink_version
 
+/// MAV_RESULT (COMMAND_ACK.result).
+enum class MavResult : uint8_t {
+  Accepted = 0, TemporarilyRejected = 1, Denied = 2, Unsupported = 3, Failed = 4, InProgress = 5, Cancelled = 6
+};
+
+/// MAV_CMD values hitl sends or answers.
+namespace cmd {
+inline constexpr uint16_t kNavLand = 21;
+inline constexpr uint16_t kNavTakeoff = 22;
+inline constexpr uint16_t kDoSetMode = 176;
+inline constexpr uint16_t kComponentArmDisarm = 400;
+inline constexpr uint16_t kSetMessageInterval = 511;
+inline constexpr uint16_t kRequestMessage = 512;
+inline constexpr uint16_t kRequestAutopilotCapabilities = 520;
+inline constexpr float kArmDisarmForceMagic = 21196.0f;  ///< COMPONENT_ARM_DISARM param2: force
+}  // namespace cmd
+
+/// MAV_LANDED_STATE (EXTENDED_SYS_STATE.landed_state).
+enum class MavLandedState : uint8_t { Undefined = 0, OnGround = 1, InAir = 2, Takeoff = 3, Landing = 4 };
+
+/// MAV_SEVERITY (STATUSTEXT.severity).
+enum class MavSeverity : uint8_t { Emergency = 0, Alert = 1, Critical = 2, Error = 3, Warning = 4, Notice = 5, Info = 6, Debug = 7 };
+
+/// MAV_SYS_STATUS_SENSOR bits (SYS_STATUS onboard_control_sensors_*).
+namespace sys_status {
+inline constexpr uint32_t kGyro = 1;
+inline constexpr uint32_t kAccel = 2;
+inline constexpr uint32_t kMag = 4;
+inline constexpr uint32_t kAbsolutePressure = 8;
+inline constexpr uint32_t kGps = 32;
+inline constexpr uint32_t kMotorOutputs = 32768;
+inline constexpr uint32_t kRcReceiver = 65536;
+inline constexpr uint32_t kAhrs = 2097152;
+inline constexpr uint32_t kBattery = 33554432;
+inline constexpr uint32_t kPrearmCheck = 268435456;
+}  // namespace sys_status
+
+/// MAV_PROTOCOL_CAPABILITY bits (AUTOPILOT_VERSION.capabilities).
+namespace capability {
+inline constexpr uint64_t kCommandInt = 8;
+inline constexpr uint64_t kParamEncodeBytewise = 16;
+inline constexpr uint64_t kMavlink2 = 8192;
+}  // namespace capability
+
+/// MAV_PARAM_TYPE values PX4 uses.
+inline constexpr uint8_t kMavParamTypeInt32 = 6;
+inline constexpr uint8_t kMavParamTypeReal32 = 9;
+
 /// Component ids hitl uses for itself.
 inline constexpr uint8_t kCompIdMissionPlanner = 190;  ///< MAV_COMP_ID_MISSIONPLANNER: what GCS tools use
 inline constexpr uint8_t kGcsSystemId = 255;           ///< the system id ground stations use

@@ -1,7 +1,6 @@
 #include <gtest/gtest.h>
 
 #include "target/emulator/param_store.h"
-#include "target/emulator/px4_modes.h"
 #include "target/emulator/shell.h"
 
 namespace hitl::target {
@@ -57,16 +56,6 @@ TEST(ParamStore, TypedSetsWithRanges) {
   EXPECT_EQ(changes, 1);
   EXPECT_EQ(store.index_of("MPC_XY_P"), 1u);
   EXPECT_EQ(store.at(0).name, "SYS_HITL");
-}
-
-TEST(Px4Modes, CustomModeAndBaseModeAsPx4EncodesThem) {
-  const Px4Mode hold{Px4MainMode::Auto, Px4AutoMode::Loiter};
-  EXPECT_EQ(custom_mode(hold), (4u << 16) | (3u << 24));
-  EXPECT_EQ(mode_from_custom(custom_mode(hold)), hold);
-  // PX4 v1.16 in HIL, disarmed in Hold: base_mode 61; armed: 189 (px4-simulator-facts.md).
-  EXPECT_EQ(base_mode(hold, false, true), 61);
-  EXPECT_EQ(base_mode(hold, true, true), 189);
-  EXPECT_STREQ(mode_name({Px4MainMode::Posctl, Px4AutoMode::None}), "Position");
 }
 
 }  // namespace
