@@ -248,10 +248,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                   "Fixed local port: PX4 keeps answering the first port it heard")
       ->capture_default_str()->check(CLI::Range(0, 65535))->group(link);
   sub->add_option("--bind", c.bind_address, "Local address for the simulator's sockets")->capture_default_str()->group(link);
-  sub->add_option("--px4-sitl", opt->px4_sitl,
-                  "Serve PX4 SITL's simulator_mavlink instead of a board: tcp:PORT (hitl listens, default tcp:4560) or udp:PORT")
-      ->expected(0, 1)->type_name("[tcp:4560|udp:PORT]")->each([opt](const std::string&) { opt->px4_sitl_given = true; })
-      ->group(link);
+  auto* px4_sitl = sub->add_option("--px4-sitl", opt->px4_sitl,
+                                   "Serve PX4 SITL's simulator_mavlink instead of a board: tcp:PORT (hitl listens, "
+                                   "default tcp:4560) or udp:PORT")
+                       ->expected(0, 1)->type_name("[tcp:4560|udp:PORT]")->group(link);
   sub->add_option("--sysid", opt->sysid, "System id of the simulator's HEARTBEAT and frames")
       ->capture_default_str()->check(CLI::Range(1, 255))->group(link);
   sub->add_option("--compid", opt->compid, "Component id of the simulator")->capture_default_str()->check(CLI::Range(1, 255))->group(link);
@@ -295,7 +295,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_option("--gcs", c.gcs, "Also route the board's telemetry to a ground station (QGroundControl: 127.0.0.1:14550)")
       ->type_name("HOST:PORT")->group(route);
   sub->add_option("--record", c.record_path, "Save everything sent and received to a .tlog")->type_name("FILE.tlog")->group(route);
-  sub->callback([&options, &state, opt]() { state.exit_code = run_sim(options, *opt); });
+  sub->callback([&options, &state, opt, px4_sitl]() {
+    opt->px4_sitl_given = px4_sitl->count() > 0;  // also when given bare: `--px4-sitl` means tcp:4560
+    state.exit_code = run_sim(options, *opt);
+  });
 }
 
 }  // namespace hitl::cli

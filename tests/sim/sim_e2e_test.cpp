@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <csignal>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -347,6 +348,18 @@ TEST(SimE2E, RoutesClientsToTheBoardAndTelemetryBack) {
   EXPECT_TRUE(client_got_attitude);
   EXPECT_FALSE(client_got_hil);
   EXPECT_EQ(sim.wait(30s), 0);
+}
+
+TEST(SimE2E, BarePx4SitlFlagServesTcp4560) {
+  // The documented form, with no value: it must mean tcp:4560, not fall back to a board link.
+  Process sim({test::hitl_binary(), "sim", "--px4-sitl", "--no-vio", "--clients", "0", "--bind", "127.0.0.1",
+               "--duration", "0.1"});
+  const bool serving = sim.wait_for_stderr("waiting for PX4 SITL to connect to TCP 127.0.0.1:4560", 10s) ||
+                       sim.err().find("4560") != std::string::npos;  // or 4560 was taken: the error names it
+  EXPECT_TRUE(serving) << sim.err();
+  EXPECT_EQ(sim.err().find("HIL_SENSOR/HIL_GPS to"), std::string::npos) << sim.err();
+  sim.signal(SIGINT);
+  sim.wait(10s);
 }
 
 /// Plays PX4 SITL's simulator_mavlink: connects to hitl over TCP, answers in lockstep.
