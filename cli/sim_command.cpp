@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "engine/hil/session.h"
 #include "engine/net/socket_address.h"
+#include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
 #include "engine/model/x500_defaults.h"
 
@@ -19,6 +20,7 @@ struct SimOptions {
   hil::SessionConfig session;
   std::string vehicle_file;
   std::string world_file;
+  std::string trajectory_file;
   std::string px4_sitl;  ///< "tcp:4560" / "udp:14560" when --px4-sitl is given
   bool px4_sitl_given = false;
   bool no_vio = false;
@@ -63,6 +65,12 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
   j["parse_errors"] = s.parse_errors;
   j["clients"] = s.clients;
   j["routed"] = {{"to_board", s.routed_to_board}, {"to_clients", s.routed_to_clients}};
+  if (!s.trajectory_state.empty())
+    j["trajectory"] = {{"state", s.trajectory_state},
+                       {"failure", s.trajectory_failure},
+                       {"samples", s.trajectory_samples},
+                       {"rms_m", s.trajectory_rms_m},
+                       {"max_m", s.trajectory_max_m}};
   if (final_summary) {
     j["sent"] = streams_json(s.sent, s.wall_time_s);
     j["received"] = streams_json(s.received, s.wall_time_s);
@@ -142,6 +150,10 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
               static_cast<unsigned long long>(s.lockstep_fallbacks));
   std::printf("final position NED (%.2f, %.2f, %.2f) m, %s\n", s.p_NED_m[0], s.p_NED_m[1], s.p_NED_m[2],
               s.armed ? "armed" : "disarmed");
+  if (!s.trajectory_state.empty())
+    std::printf("trajectory: %s%s, tracking error against truth RMS %.2f m, max %.2f m (%llu samples)\n",
+                s.trajectory_state.c_str(), s.trajectory_failure.empty() ? "" : (": " + s.trajectory_failure).c_str(),
+                s.trajectory_rms_m, s.trajectory_max_m, static_cast<unsigned long long>(s.trajectory_samples));
 }
 
 const char* end_name(hil::Session::EndReason r) {
@@ -149,6 +161,8 @@ const char* end_name(hil::Session::EndReason r) {
     case hil::Session::EndReason::Duration: return "duration";
     case hil::Session::EndReason::Stopped: return "stopped";
     case hil::Session::EndReason::FlightStackGone: return "flight_stack_gone";
+    case hil::Session::EndReason::TrajectoryDone: return "trajectory_done";
+    case hil::Session::EndReason::TrajectoryFailed: return "trajectory_failed";
   }
   return "?";
 }
@@ -167,6 +181,14 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   if (!world) {
     log_error(cmd, "--world: " + world.error().message);
     return kExitUsage;
+  }
+  if (!opt.trajectory_file.empty()) {
+    auto trajectory = vehicle::Trajectory::load(opt.trajectory_file);
+    if (!trajectory) {
+      log_error(cmd, "-t: " + trajectory.error().message);
+      return kExitUsage;
+    }
+    cfg.trajectory = std::move(trajectory.value());
   }
   cfg.vehicle = *vehicle;
   cfg.world = *world;
@@ -223,7 +245,8 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   } else {
     print_summary(snap, end_name(*end));
   }
-  return *end == hil::Session::EndReason::FlightStackGone ? kExitFailed : kExitOk;
+  const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed;
+  return failed ? kExitFailed : kExitOk;
 }
 
 }  // namespace
@@ -288,6 +311,11 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_flag("--no-noise", [opt](int64_t) { opt->session.noise = false; },
                 "Noise-free sensors (tests only: PX4 marks repeating values stale and refuses to arm)")
       ->group(model);
+
+  sub->add_option("-t,--trajectory", opt->trajectory_file,
+                  "Fly this trajectory file (the spec's trajectory_rc: arm, take off, follow the waypoints by stick, "
+                  "hold, land) and end the session; the summary gives the tracking error against ground truth")
+      ->check(CLI::ExistingFile)->type_name("FILE.json")->group(model);
 
   const char* route = "Clients and recording";
   sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local MAVLink clients (other hitl commands); 0: none")

@@ -23,6 +23,7 @@
 #include "engine/net/tcp_server.h"
 #include "engine/net/udp_endpoint.h"
 #include "engine/sensors/sensor_suite.h"
+#include "engine/vehicle/trajectory_pilot.h"
 
 namespace hitl::hil {
 namespace {
@@ -62,6 +63,9 @@ struct Session::Impl {
   std::optional<net::UdpEndpoint> vio;
   std::optional<net::ClientPort> clients;
   std::optional<mavlink::TlogWriter> recorder;
+  std::optional<vehicle::TrajectoryPilot> pilot;
+  mavlink::FrameEncoder pilot_encoder{mavlink::kGcsSystemId, mavlink::kCompIdMissionPlanner};  ///< a GCS's identity
+  Eigen::Vector3d pilot_origin_ENU_m = Eigen::Vector3d::Zero();
 
   ActuatorInput actuators{0.5};
   std::optional<Pacer> pacer;
@@ -149,6 +153,7 @@ struct Session::Impl {
     auto& c = received[f.msgid];
     ++c.count;
     ++c.window;
+    if (pilot) pilot->on_board_frame(f);
     if (f.is<mavlink::msg::HilActuatorControls>()) {
       actuators.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, now_s);
     } else if (!is_hil_message(f.msgid) && clients) {
@@ -230,6 +235,7 @@ struct Session::Impl {
       if (first_sensor_wall_s < 0) first_sensor_wall_s = Pacer::now_s();
     }
     if (frame.gps) send_to_stack(make_hil_gps(*frame.gps, t_us));
+    if (pilot) fly_pilot(state, observer);
     if (state.time_s + 1e-9 >= next_heartbeat_s) {
       next_heartbeat_s += 1.0;
       mavlink::msg::Heartbeat hb;
@@ -252,6 +258,20 @@ struct Session::Impl {
       observer.on_event({Severity::Warning, no_answer_text()});
     }
     return Ok{};
+  }
+
+  /// -t: the trajectory pilot flies on ground truth, as the spec's trajectory_rc plugin does.
+  void fly_pilot(const model::VehicleState& state, Observer& observer) {
+    vehicle::PilotPose pose;
+    const Eigen::Vector3d p = state.p_ENU_m - pilot_origin_ENU_m;
+    pose.p_ENU_m = {p.x(), p.y(), p.z()};
+    const Eigen::Matrix3d R = state.q_FLU_to_ENU.toRotationMatrix();
+    pose.yaw_ENU_rad = std::atan2(R(1, 0), R(0, 0));
+    auto out = pilot->step(state.time_s, pose);
+    mavlink::FrameBuffer buf;
+    for (const auto& c : out.commands) forward_to_stack({buf.data(), pilot_encoder.encode(c, buf)});
+    if (out.rc) forward_to_stack({buf.data(), pilot_encoder.encode(*out.rc, buf)});
+    if (out.event) observer.on_event({pilot->state() == vehicle::PilotState::Failed ? Severity::Error : Severity::Info, *out.event});
   }
 
   std::string no_answer_text() const {
@@ -299,6 +319,14 @@ struct Session::Impl {
     s.clients = clients ? clients->client_count() : 0;
     s.routed_to_board = routed_to_board;
     s.routed_to_clients = routed_to_clients;
+    if (pilot) {
+      s.trajectory_state = vehicle::to_string(pilot->state());
+      s.trajectory_failure = pilot->failure();
+      const auto t = pilot->tracking();
+      s.trajectory_samples = t.samples;
+      s.trajectory_rms_m = t.rms_m;
+      s.trajectory_max_m = t.max_m;
+    }
     s.actuator_flags = actuators.last_flags();
     s.actuator_mode = actuators.last_mode();
     return s;
@@ -384,6 +412,15 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     if (!cp) return Error{cp.error().message + " (is another hitl sim or hitl bridge running? --clients 0 disables)"};
     impl->clients.emplace(std::move(cp.value()));
   }
+  if (config.trajectory) {
+    if (config.link == FlightStackLink::SitlTcp)
+      return Error{"-t: PX4 SITL takes only HIL messages on its simulator link; fly the trajectory with "
+                   "`hitl fly trajectory` against its GCS port instead"};
+    vehicle::PilotConfig pc;
+    pc.home_alt_msl_m = config.world.home.alt_m;
+    impl->pilot.emplace(*config.trajectory, pc);
+    impl->pilot_origin_ENU_m = impl->model->state().p_ENU_m;
+  }
   if (!config.record_path.empty()) {
     auto w = mavlink::TlogWriter::open(config.record_path);
     if (!w) return w.error();
@@ -453,6 +490,10 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
     if (auto st = s.step(observer); !st) {
       s.publish();
       return Error{st.error().message};
+    }
+    if (s.pilot && s.pilot->finished()) {
+      reason = s.pilot->state() == vehicle::PilotState::Done ? EndReason::TrajectoryDone : EndReason::TrajectoryFailed;
+      break;
     }
     if (s.stack_gone) {
       observer.on_event({Severity::Error, "PX4 SITL disconnected; PX4 never reconnects to a simulator, so this session "

@@ -63,6 +63,12 @@ struct SessionSnapshot {
   uint64_t routed_to_clients = 0;
   uint64_t actuator_flags = 0;
   uint64_t actuator_mode = 0;
+  // -t: the trajectory pilot
+  std::string trajectory_state;  ///< empty without -t; INIT ... DONE / FAILED
+  std::string trajectory_failure;
+  uint64_t trajectory_samples = 0;
+  double trajectory_rms_m = 0;   ///< tracking error against ground truth
+  double trajectory_max_m = 0;
 };
 
 class Session {
@@ -74,7 +80,7 @@ class Session {
     /// About once a second of wall time.
     virtual void on_status(const SessionSnapshot& /*snapshot*/) {}
   };
-  enum class EndReason { Duration, Stopped, FlightStackGone };
+  enum class EndReason { Duration, Stopped, FlightStackGone, TrajectoryDone, TrajectoryFailed };
 
   /// Builds the model and sensors and opens every socket: a port in use, a bad address or a bad
   /// config is an Error here, before anything runs.

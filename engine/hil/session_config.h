@@ -9,6 +9,7 @@
 #include "engine/mavlink/frame.h"
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
+#include "engine/vehicle/trajectory.h"
 
 namespace hitl::hil {
 
@@ -62,6 +63,8 @@ struct SessionConfig {
   uint64_t seed = 1;                      ///< --seed
   bool noise = true;                      ///< --no-noise
   std::string record_path;                ///< --record FILE.tlog: everything sent and received
+
+  std::optional<vehicle::Trajectory> trajectory;  ///< -t FILE: fly it (trajectory_rc), then end the session
 
   uint16_t clients_port = kSessionClientPort;  ///< --clients (0: none)
   std::string clients_bind = "127.0.0.1";
