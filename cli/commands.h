@@ -15,5 +15,6 @@ struct RunState {
 void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_target_command(CLI::App& app, GlobalOptions& options, RunState& state);
+void add_params_command(CLI::App& app, GlobalOptions& options, RunState& state);
 
 }  // namespace hitl::cli

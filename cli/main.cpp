@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   add_inspect_command(app, options, state);
   add_sim_command(app, options, state);
   add_target_command(app, options, state);
+  add_params_command(app, options, state);
 
   try {
     app.parse(argc, argv);

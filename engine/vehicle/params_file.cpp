@@ -13,8 +13,12 @@ extern const char* const kHitlDefaultParamsText;
 
 std::string ParamValue::to_string() const {
   if (type == ParamType::Int32) return std::to_string(i);
+  // The shortest text that reads back as the same float ("0.95", not "0.949999988").
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(f));
+  for (int digits = 6; digits <= 9; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, static_cast<double>(f));
+    if (std::strtof(buf, nullptr) == f) break;
+  }
   return buf;
 }
 

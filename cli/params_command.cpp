@@ -1,0 +1,258 @@
+// hitl params: PX4 parameters from the host: show, get, set, diff and check against the spec's
+// HITL set, export/load in QGroundControl's .params format, and reset to the HITL defaults.
+#include <fnmatch.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include "cli/commands.h"
+#include "cli/link_options.h"
+#include "engine/vehicle/param_client.h"
+#include "engine/vehicle/params_file.h"
+
+namespace hitl::cli {
+namespace {
+
+struct ParamsOptions {
+  vehicle::LinkOptions link;
+  std::string pattern;
+  std::string name;
+  std::string value;
+  std::string file;
+  bool dry_run = false;
+};
+
+nlohmann::json to_json(const vehicle::ParamValue& v) {
+  return v.type == vehicle::ParamType::Int32 ? nlohmann::json(v.i) : nlohmann::json(v.f);
+}
+
+nlohmann::json change(const std::string& name, const vehicle::ParamValue& from, const vehicle::ParamValue& to) {
+  return {{"name", name}, {"from", to_json(from)}, {"to", to_json(to)}, {"from_text", from.to_string()}, {"to_text", to.to_string()}};
+}
+
+std::string upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// Connects and downloads, saying how; an error line and nullopt on failure.
+struct Session {
+  std::unique_ptr<vehicle::VehicleLink> link;
+  std::unique_ptr<vehicle::ParamClient> client;
+};
+
+std::optional<Session> open(const GlobalOptions& g, const ParamsOptions& o) {
+  auto link = vehicle::VehicleLink::connect(o.link);
+  if (!link) {
+    log_error("params", link.error().message);
+    return std::nullopt;
+  }
+  log_info(g, "hitl params: autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
+  Session s;
+  s.link = std::move(link.value());
+  s.client = std::make_unique<vehicle::ParamClient>(*s.link);
+  return s;
+}
+
+std::optional<std::vector<vehicle::Param>> download(const GlobalOptions& g, Session& s) {
+  const bool tty = ::isatty(STDERR_FILENO) == 1 && !g.quiet;
+  auto all = s.client->download([&](std::size_t n, std::size_t total) {
+    if (tty && (n % 25 == 0 || n == total)) std::fprintf(stderr, "\rparameters %zu / %zu", n, total);
+  });
+  if (tty) std::fprintf(stderr, "\n");
+  if (!all) {
+    log_error("params", all.error().message);
+    return std::nullopt;
+  }
+  return std::move(all.value());
+}
+
+/// Pushes `wanted` onto the board: set what differs, verify by read-back, report.
+int push(const GlobalOptions& g, Session& s, const std::vector<vehicle::Param>& wanted, bool dry_run, const char* what) {
+  auto board = download(g, s);
+  if (!board) return kExitFailed;
+  std::map<std::string, vehicle::ParamValue> current;
+  for (const auto& p : *board) current[p.name] = p.value;
+  nlohmann::json set = nlohmann::json::array(), unchanged = nlohmann::json::array(), failed = nlohmann::json::array();
+  for (const auto& p : wanted) {
+    auto it = current.find(p.name);
+    if (it == current.end()) {
+      failed.push_back({{"name", p.name}, {"error", "the board has no such parameter"}});
+      continue;
+    }
+    if (it->second == p.value) {
+      unchanged.push_back(p.name);
+      continue;
+    }
+    if (dry_run) {
+      set.push_back(change(p.name, it->second, p.value));
+      continue;
+    }
+    auto r = s.client->set(p.name, p.value);
+    auto back = r ? s.client->get(p.name) : Expected<vehicle::ParamValue>(r.error());
+    if (r && back && *back == p.value) set.push_back(change(p.name, it->second, p.value));
+    else failed.push_back({{"name", p.name}, {"error", !r ? r.error().message : (!back ? back.error().message : "read back " + back->to_string())}});
+  }
+  if (g.json) {
+    print_json_line({{"type", what}, {"dry_run", dry_run}, {"set", set}, {"unchanged", unchanged}, {"failed", failed},
+                     {"ok", failed.empty()}});
+  } else {
+    for (const auto& e : set)
+      std::cout << (dry_run ? "would set " : "set ") << e["name"].get<std::string>() << ": " << e["from_text"].get<std::string>()
+                << " -> " << e["to_text"].get<std::string>() << '\n';
+    for (const auto& e : failed) std::cout << "FAILED " << e["name"].get<std::string>() << ": " << e["error"].get<std::string>() << '\n';
+    std::cout << set.size() << (dry_run ? " to set, " : " set, ") << unchanged.size() << " unchanged, " << failed.size() << " failed\n";
+  }
+  return failed.empty() ? kExitOk : kExitFailed;
+}
+
+int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& action) {
+  auto s = open(g, o);
+  if (!s) return kExitFailed;
+  if (action == "show" || action == "export") {
+    auto all = download(g, *s);
+    if (!all) return kExitFailed;
+    if (action == "export") {
+      std::ofstream f(o.file);
+      f << vehicle::format_params(*all, s->link->target_sysid(), s->link->target_compid());
+      if (!f) {
+        log_error("params", "cannot write '" + o.file + "'");
+        return kExitFailed;
+      }
+      if (g.json) print_json_line({{"type", "export"}, {"file", o.file}, {"count", all->size()}});
+      else std::cout << "exported " << all->size() << " parameters to " << o.file << '\n';
+      return kExitOk;
+    }
+    const std::string pattern = upper(o.pattern.empty() ? "*" : o.pattern);
+    nlohmann::json params = nlohmann::json::object();
+    for (const auto& p : *all) {
+      if (fnmatch(pattern.c_str(), p.name.c_str(), 0) != 0) continue;
+      if (g.json) params[p.name] = to_json(p.value);
+      else std::printf("%-16s %s\n", p.name.c_str(), p.value.to_string().c_str());
+    }
+    if (g.json) print_json_line({{"type", "params"}, {"params", params}});
+    return kExitOk;
+  }
+  if (action == "get") {
+    auto v = s->client->get(upper(o.name));
+    if (!v) {
+      log_error("params", v.error().message);
+      return kExitFailed;
+    }
+    if (g.json) print_json_line({{"type", "param"}, {"name", upper(o.name)}, {"value", to_json(*v)}});
+    else std::cout << v->to_string() << '\n';
+    return kExitOk;
+  }
+  if (action == "set") {
+    const std::string name = upper(o.name);
+    auto current = s->client->get(name);
+    if (!current) {
+      log_error("params", current.error().message);
+      return kExitFailed;
+    }
+    vehicle::ParamValue wanted;
+    char* end = nullptr;
+    if (current->type == vehicle::ParamType::Int32) {
+      const long v = std::strtol(o.value.c_str(), &end, 10);
+      wanted = vehicle::ParamValue::int32(static_cast<int32_t>(v));
+    } else {
+      const float v = std::strtof(o.value.c_str(), &end);
+      wanted = vehicle::ParamValue::real32(v);
+    }
+    if (o.value.empty() || end != o.value.c_str() + o.value.size() || !std::isfinite(wanted.as_double())) {
+      log_error("params", "set " + name + ": '" + o.value + "' is not a valid " +
+                              (current->type == vehicle::ParamType::Int32 ? "INT32" : "REAL32"));
+      return kExitUsage;
+    }
+    auto r = s->client->set(name, wanted);
+    if (!r) {
+      log_error("params", r.error().message);
+      return kExitFailed;
+    }
+    if (g.json) print_json_line({{"type", "param"}, {"name", name}, {"value", to_json(*r)}, {"previous", to_json(*current)}});
+    else std::cout << name << ": " << current->to_string() << " -> " << r->to_string() << '\n';
+    return kExitOk;
+  }
+  if (action == "diff" || action == "check") {
+    auto all = download(g, *s);
+    if (!all) return kExitFailed;
+    std::map<std::string, vehicle::ParamValue> board;
+    for (const auto& p : *all) board[p.name] = p.value;
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& p : vehicle::hitl_default_params()) {
+      auto it = board.find(p.name);
+      const bool ok = it != board.end() && it->second == p.value;
+      if (action == "diff" && ok) continue;
+      nlohmann::json row = {{"name", p.name}, {"expected", to_json(p.value)},
+                            {"board", it == board.end() ? nlohmann::json(nullptr) : to_json(it->second)}, {"ok", ok},
+                            {"board_text", it == board.end() ? std::string("missing") : it->second.to_string()},
+                            {"expected_text", p.value.to_string()}};
+      if (!ok) row["fix"] = it == board.end() ? "this PX4 build lacks " + p.name
+                                              : "hitl params set " + p.name + " " + p.value.to_string() + "  (or: hitl params reset)";
+      rows.push_back(row);
+    }
+    bool all_ok = true;
+    for (const auto& r : rows) all_ok = all_ok && r["ok"].get<bool>();
+    if (g.json) {
+      for (auto& r : rows) {
+      r.erase("board_text");
+      r.erase("expected_text");
+    }
+    print_json_line({{"type", action}, {action == "diff" ? "differences" : "checks", rows}, {"ok", all_ok}});
+    } else {
+      for (const auto& r : rows) {
+        if (action == "check") std::cout << (r["ok"].get<bool>() ? "PASS " : "FAIL ");
+        std::cout << r["name"].get<std::string>() << ": board " << r["board_text"].get<std::string>() << ", HITL default "
+                  << r["expected_text"].get<std::string>();
+        if (r.contains("fix")) std::cout << "  -> " << r["fix"].get<std::string>();
+        std::cout << '\n';
+      }
+      if (action == "diff" && rows.empty()) std::cout << "no differences from the HITL defaults\n";
+    }
+    return all_ok ? kExitOk : kExitFailed;
+  }
+  if (action == "load") {
+    auto file = vehicle::load_params_file(o.file);
+    if (!file) {
+      log_error("params", file.error().message);
+      return kExitUsage;
+    }
+    return push(g, *s, *file, o.dry_run, "load");
+  }
+  return push(g, *s, vehicle::hitl_default_params(), o.dry_run, "reset");
+}
+
+}  // namespace
+
+void add_params_command(CLI::App& app, GlobalOptions& options, RunState& state) {
+  auto o = std::make_shared<ParamsOptions>();
+  auto* sub = app.add_subcommand("params", "PX4 parameters: show, get, set, diff/check against the HITL set, export, load, reset");
+  sub->require_subcommand(1);
+  sub->footer("Exit: 0 ok, 1 a check failed or the board did not take a value, 2 bad usage or file.");
+  add_link_options(sub, o->link);
+  auto add = [&](const char* name, const char* help) {
+    auto* c = sub->add_subcommand(name, help);
+    c->callback([&options, &state, o, action = std::string(name)]() { state.exit_code = run(options, *o, action); });
+    return c;
+  };
+  add("show", "List parameters (all, or those matching a glob such as 'EKF2_*')")->add_option("PATTERN", o->pattern, "Glob");
+  add("get", "Print one parameter's value")->add_option("NAME", o->name)->required();
+  auto* set = add("set", "Set one parameter and check the board's echo");
+  set->add_option("NAME", o->name)->required();
+  set->add_option("VALUE", o->value)->required();
+  add("diff", "Parameters that differ from the spec's HITL default set (exit 1 when any)");
+  add("check", "The spec's HITL settings (SYS_HITL, CAL_*_ID vs the dsp_hitl device IDs, EKF2, arming, CA_*): "
+               "pass/fail with the command that fixes each");
+  add("export", "Save every parameter to a QGroundControl .params file")->add_option("FILE", o->file)->required();
+  auto* load = add("load", "Set the parameters of a .params file, verified by read-back");
+  load->add_option("FILE", o->file)->required()->check(CLI::ExistingFile);
+  load->add_flag("--dry-run", o->dry_run, "Show what would change");
+  add("reset", "Push the spec's HITL default set, verified by read-back (no rm on the board needed)")
+      ->add_flag("--dry-run", o->dry_run, "Show what would change");
+}
+
+}  // namespace hitl::cli

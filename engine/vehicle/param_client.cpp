@@ -1,0 +1,112 @@
+#include "engine/vehicle/param_client.h"
+
+#include <cstring>
+#include <map>
+#include <optional>
+
+#include "engine/mavlink/enums.h"
+
+namespace hitl::vehicle {
+namespace {
+
+namespace msg = mavlink::msg;
+
+std::string name_of(const std::array<char, 16>& id) { return std::string(id.data(), strnlen(id.data(), id.size())); }
+
+void put_name(std::array<char, 16>& id, const std::string& name) {
+  id.fill('\0');
+  std::memcpy(id.data(), name.data(), std::min<std::size_t>(name.size(), id.size()));
+}
+
+ParamValue value_of(const msg::ParamValue& v) {
+  return decode_param_float(v.param_value, v.param_type == mavlink::kMavParamTypeInt32 ? ParamType::Int32 : ParamType::Real32);
+}
+
+}  // namespace
+
+Expected<std::vector<Param>> ParamClient::download(const std::function<void(std::size_t, std::size_t)>& progress) {
+  std::map<uint16_t, Param> got;
+  std::optional<uint16_t> total;
+  auto take = [&](const mavlink::Frame& f) {
+    if (!f.is<msg::ParamValue>()) return false;
+    const auto v = f.as<msg::ParamValue>();
+    total = v.param_count;
+    if (v.param_index < v.param_count && !got.count(v.param_index)) {
+      got[v.param_index] = Param{name_of(v.param_id), value_of(v)};
+      if (progress) progress(got.size(), *total);
+    }
+    return total && got.size() == *total;
+  };
+  msg::ParamRequestList list;
+  list.target_system = link_.target_sysid();
+  list.target_component = link_.target_compid();
+  for (int attempt = 0; attempt < kRetries && !total; ++attempt) {
+    link_.send(list);
+    link_.wait(kTimeout_s * 2, take);  // until every index arrived, or the burst went quiet
+  }
+  if (!total) return Error{"no PARAM_VALUE in answer to PARAM_REQUEST_LIST"};
+  for (int round = 0; round < kRetries && got.size() < *total; ++round) {
+    for (uint16_t i = 0; i < *total; ++i) {
+      if (got.count(i)) continue;
+      msg::ParamRequestRead read;
+      read.target_system = link_.target_sysid();
+      read.target_component = link_.target_compid();
+      read.param_index = static_cast<int16_t>(i);
+      link_.send(read);
+    }
+    link_.wait(kTimeout_s, take);
+  }
+  if (got.size() < *total)
+    return Error{"received " + std::to_string(got.size()) + " of " + std::to_string(*total) + " parameters after " +
+                 std::to_string(kRetries) + " rounds of re-requests"};
+  std::vector<Param> out;
+  out.reserve(got.size());
+  for (auto& [i, p] : got) out.push_back(std::move(p));
+  return out;
+}
+
+Expected<ParamValue> ParamClient::get(const std::string& name) {
+  msg::ParamRequestRead read;
+  read.target_system = link_.target_sysid();
+  read.target_component = link_.target_compid();
+  read.param_index = -1;
+  put_name(read.param_id, name);
+  std::optional<ParamValue> value;
+  for (int attempt = 0; attempt < kRetries && !value; ++attempt) {
+    link_.send(read);
+    link_.wait(kTimeout_s, [&](const mavlink::Frame& f) {
+      if (!f.is<msg::ParamValue>()) return false;
+      const auto v = f.as<msg::ParamValue>();
+      if (name_of(v.param_id) != name) return false;
+      value = value_of(v);
+      return true;
+    });
+  }
+  if (!value) return Error{"no answer for parameter " + name + " (it may not exist on this board)"};
+  return *value;
+}
+
+Expected<ParamValue> ParamClient::set(const std::string& name, const ParamValue& value) {
+  msg::ParamSet set;
+  set.target_system = link_.target_sysid();
+  set.target_component = link_.target_compid();
+  put_name(set.param_id, name);
+  set.param_value = encode_param_float(value);
+  set.param_type = static_cast<uint8_t>(value.type);
+  std::optional<ParamValue> echo;
+  for (int attempt = 0; attempt < kRetries && !echo; ++attempt) {
+    link_.send(set);
+    link_.wait(kTimeout_s, [&](const mavlink::Frame& f) {
+      if (!f.is<msg::ParamValue>()) return false;
+      const auto v = f.as<msg::ParamValue>();
+      if (name_of(v.param_id) != name) return false;
+      echo = value_of(v);
+      return true;
+    });
+  }
+  if (!echo) return Error{name + ": no PARAM_VALUE echo after " + std::to_string(kRetries) + " tries"};
+  if (!(*echo == value)) return Error{name + ": the board kept " + echo->to_string() + " (asked for " + value.to_string() + ")"};
+  return *echo;
+}
+
+}  // namespace hitl::vehicle

@@ -1,0 +1,146 @@
+#include "engine/vehicle/vehicle_link.h"
+
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+
+#include "engine/mavlink/enums.h"
+
+namespace hitl::vehicle {
+namespace {
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+Expected<net::UdpEndpoint> open_endpoint(const std::string& bind, uint16_t port, std::optional<net::SocketAddress> peer,
+                                         net::PartnerPolicy policy, const std::string& name) {
+  net::UdpEndpoint::Config c;
+  c.bind_address = bind;
+  c.bind_port = port;
+  c.peer = peer;
+  c.policy = policy;
+  c.name = name;
+  return net::UdpEndpoint::open(c);
+}
+
+/// True unless the kernel says at once that nothing listens there (a connected UDP socket gets the
+/// ICMP port-unreachable as ECONNREFUSED; on loopback that takes microseconds).
+bool maybe_listening(const net::SocketAddress& address) {
+  const int fd = ::socket(address.family(), SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return true;
+  bool listening = true;
+  const uint8_t probe = 0;  // not a MAVLink frame: a listener counts it as garbage and moves on
+  if (::connect(fd, address.get(), address.length()) == 0 && ::send(fd, &probe, 1, 0) == 1) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 50) > 0) {
+      uint8_t buf[1];
+      if (::recv(fd, buf, sizeof buf, MSG_DONTWAIT) < 0 && errno == ECONNREFUSED) listening = false;
+    }
+  }
+  ::close(fd);
+  return listening;
+}
+
+}  // namespace
+
+VehicleLink::VehicleLink(net::UdpEndpoint endpoint, const LinkOptions& options, std::string description)
+    : endpoint_(std::move(endpoint)),
+      messages_(mavlink::MessageSet::compiled()),
+      parser_(messages_),
+      encoder_(options.own_sysid, options.own_compid),
+      options_(options),
+      description_(std::move(description)) {}
+
+void VehicleLink::heartbeat() {
+  mavlink::msg::Heartbeat hb;
+  hb.type = static_cast<uint8_t>(mavlink::MavType::Gcs);
+  hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
+  hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
+  hb.mavlink_version = mavlink::kMavlinkVersion;
+  send(hb);
+  last_heartbeat_s_ = now_s();
+}
+
+bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
+  const double end = now_s() + timeout_s;
+  for (;;) {
+    if (now_s() - last_heartbeat_s_ >= 1.0) heartbeat();
+    const double left = end - now_s();
+    if (left <= 0) return false;
+    if (!endpoint_.wait_readable(static_cast<int>(std::min(left, 0.2) * 1000) + 1)) continue;
+    bool done = false;
+    while (auto d = endpoint_.receive()) {
+      parser_.parse_datagram(d->bytes, [&](const mavlink::Frame& f) {
+        if (done || f.desc == nullptr) return;
+        if (sysid_ != 0 && f.sysid != sysid_) return;
+        done = handler(f);
+      });
+      if (done) return true;
+    }
+  }
+}
+
+bool VehicleLink::discover(double timeout_s) {
+  return wait(timeout_s, [&](const mavlink::Frame& f) {
+    if (!f.is<mavlink::msg::Heartbeat>()) return false;
+    const auto hb = f.as<mavlink::msg::Heartbeat>();
+    if (hb.autopilot == static_cast<uint8_t>(mavlink::MavAutopilot::Invalid)) return false;  // a GCS or the simulator
+    if (options_.sysid && f.sysid != *options_.sysid) return false;
+    sysid_ = f.sysid;
+    compid_ = f.compid;
+    return true;
+  });
+}
+
+Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& options) {
+  const std::string& spec = options.connect;
+  auto make = [&](net::UdpEndpoint ep, std::string description) {
+    return std::unique_ptr<VehicleLink>(new VehicleLink(std::move(ep), options, std::move(description)));
+  };
+  std::unique_ptr<VehicleLink> link;
+  if (spec == "auto") {
+    // A running session first: it routes to the board, whose instance answers only the session.
+    auto session = net::SocketAddress::resolve("127.0.0.1", options.session_port);
+    if (session && maybe_listening(*session)) {
+      auto ep = open_endpoint("127.0.0.1", 0, *session, net::PartnerPolicy::Fixed, "session client");
+      if (ep) {
+        link = make(std::move(ep.value()), "through the session on 127.0.0.1:" + std::to_string(options.session_port));
+        if (link->discover(std::min(options.timeout_s, 1.5))) return link;
+      }
+    }
+    auto board = net::SocketAddress::resolve(options.target_ip, options.gcs_port);
+    if (!board) return Error{"-i: " + board.error().message};
+    auto ep = open_endpoint("0.0.0.0", options.local_port, *board, net::PartnerPolicy::Fixed, "--local-port");
+    if (!ep)
+      return Error{"local port " + std::to_string(options.local_port) +
+                   " is busy: another hitl command is talking to the board; run `hitl bridge` and let every command "
+                   "go through it (" + ep.error().message + ")"};
+    link = make(std::move(ep.value()), "direct to " + board->to_string() + " from port " + std::to_string(options.local_port));
+  } else if (spec.rfind("udp:", 0) == 0) {
+    auto peer = net::SocketAddress::parse(spec.substr(4), "--connect");
+    if (!peer) return peer.error();
+    auto ep = open_endpoint("0.0.0.0", options.local_port, *peer, net::PartnerPolicy::Fixed, "--local-port");
+    if (!ep) return ep.error();
+    link = make(std::move(ep.value()), "to " + peer->to_string() + " from port " + std::to_string(options.local_port));
+  } else if (spec.rfind("udpin:", 0) == 0) {
+    auto port = net::parse_port(spec.substr(6), "--connect udpin");
+    if (!port) return port.error();
+    auto ep = open_endpoint("0.0.0.0", *port, std::nullopt, net::PartnerPolicy::LastSender, "--connect udpin");
+    if (!ep) return ep.error();
+    link = make(std::move(ep.value()), "listening on UDP " + std::to_string(*port));
+  } else {
+    return Error{"--connect: '" + spec + "' is not auto, udp:HOST:PORT or udpin:PORT"};
+  }
+  if (!link->discover(options.timeout_s))
+    return Error{"no autopilot HEARTBEAT " + link->description() + " within " + std::to_string(static_cast<int>(options.timeout_s)) +
+                 " s. Is the board up (or `hitl target` running)? A PX4 MAVLink instance answers only the first address "
+                 "and port it heard: if another tool talked to it first from another port, restart PX4 on the board "
+                 "(voxl-px4-hitl start) or talk through `hitl bridge`"};
+  return link;
+}
+
+}  // namespace hitl::vehicle

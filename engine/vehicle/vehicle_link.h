@@ -1,0 +1,77 @@
+// How every board-operating command reaches the flight stack (DESIGN.md §4):
+//   auto (default): through a running `hitl sim` / `hitl bridge` session's client port
+//     (127.0.0.1:14600) when one answers; else straight to the board's GCS instance (-i IP, 14558)
+//     from the fixed local port 14562. Never the HIL port and never an ephemeral local port: a PX4
+//     MAVLink instance answers only the first address and port it heard, for the life of its process.
+//   udp:HOST:PORT   talk to that address from --local-port (default 14562)
+//   udpin:PORT      listen on PORT and answer whoever talks first
+// The autopilot is discovered from its HEARTBEAT (autopilot != MAV_AUTOPILOT_INVALID).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "engine/common/expected.h"
+#include "engine/mavlink/frame_encoder.h"
+#include "engine/mavlink/frame_parser.h"
+#include "engine/mavlink/messages.h"
+#include "engine/net/udp_endpoint.h"
+
+namespace hitl::vehicle {
+
+inline constexpr uint16_t kDirectLocalPort = 14562;  ///< direct commands always talk from here
+inline constexpr uint16_t kBoardGcsPort = 14558;
+
+struct LinkOptions {
+  std::string connect = "auto";           ///< --connect
+  std::string target_ip = "127.0.0.1";    ///< -i: the board for auto's direct path
+  uint16_t gcs_port = kBoardGcsPort;      ///< --port: the board's GCS instance
+  uint16_t local_port = kDirectLocalPort; ///< --local-port
+  uint16_t session_port = 14600;          ///< a running session's client port
+  std::optional<uint8_t> sysid;           ///< --sysid: pick this autopilot among several
+  double timeout_s = 5.0;                 ///< --timeout: discovery
+  uint8_t own_sysid = 255;                ///< our identity: a ground station
+  uint8_t own_compid = 190;
+};
+
+class VehicleLink {
+ public:
+  using FrameHandler = std::function<bool(const mavlink::Frame&)>;  ///< returns true when done
+
+  static Expected<std::unique_ptr<VehicleLink>> connect(const LinkOptions& options);
+
+  template <class M>
+  void send(const M& message) {
+    mavlink::FrameBuffer buf;
+    const std::size_t n = encoder_.encode(message, buf);
+    (void)endpoint_.send({buf.data(), n});
+  }
+  /// Reads frames from the target system for up to `timeout_s` (sending our HEARTBEAT each
+  /// second); true as soon as `handler` returns true.
+  bool wait(double timeout_s, const FrameHandler& handler);
+
+  uint8_t target_sysid() const { return sysid_; }
+  uint8_t target_compid() const { return compid_; }
+  /// "through the session on 127.0.0.1:14600" / "direct to 192.168.101.2:14558 from port 14562"
+  const std::string& description() const { return description_; }
+
+ private:
+  VehicleLink(net::UdpEndpoint endpoint, const LinkOptions& options, std::string description);
+  void heartbeat();
+  bool discover(double timeout_s);
+
+  net::UdpEndpoint endpoint_;
+  mavlink::MessageSet messages_;
+  mavlink::FrameParser parser_;
+  mavlink::FrameEncoder encoder_;
+  LinkOptions options_;
+  std::string description_;
+  uint8_t sysid_ = 0;
+  uint8_t compid_ = 0;
+  double last_heartbeat_s_ = -1e9;
+};
+
+}  // namespace hitl::vehicle

@@ -1,0 +1,126 @@
+// hitl params end to end against hitl target: directly, through a running hitl sim session,
+// with no board, and with the direct port taken.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+#include <fstream>
+
+#include "engine/net/udp_endpoint.h"
+#include "tests/support/process.h"
+
+namespace hitl {
+namespace {
+
+using namespace std::chrono_literals;
+
+class ParamsE2E : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    gcs_ = test::free_udp_port();
+    hil_ = test::free_udp_port();
+    local_ = test::free_udp_port();
+    board_ = std::make_unique<test::Process>(std::vector<std::string>{
+        test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil_), "--gcs-port",
+        std::to_string(gcs_), "--vio-port", "0"});
+    ASSERT_TRUE(board_->wait_for_stderr("EMULATED", 10s)) << board_->err();
+  }
+  void TearDown() override {
+    board_->signal(SIGINT);
+    board_->wait(10s);
+  }
+  /// hitl [--json] params ARGS..., directly to the board's GCS instance from our fixed local port.
+  test::RunResult params(std::vector<std::string> args, bool json = false) {
+    std::vector<std::string> a;
+    if (json) a.push_back("--json");
+    a.insert(a.end(), {"params", "-i", "127.0.0.1", "--port", std::to_string(gcs_), "--local-port", std::to_string(local_),
+                       "--session-port", std::to_string(test::free_udp_port())});
+    a.insert(a.end(), args.begin(), args.end());
+    return test::run_hitl(a);
+  }
+  uint16_t gcs_ = 0, hil_ = 0, local_ = 0;
+  std::unique_ptr<test::Process> board_;
+};
+
+TEST_F(ParamsE2E, ResetRepairsAPerturbedBoardAndDiffIsEmptyAfterwards) {
+  EXPECT_EQ(params({"set", "SYS_HITL", "0"}).exit_code, 0);
+  EXPECT_EQ(params({"set", "cal_acc0_id", "5"}).exit_code, 0);  // names in any case
+  auto check = params({"check"});
+  EXPECT_EQ(check.exit_code, 1);
+  EXPECT_NE(check.out.find("FAIL SYS_HITL: board 0, HITL default 1  -> hitl params set SYS_HITL 1"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("PASS EKF2_GPS_CTRL"), std::string::npos);
+  auto diff = params({"diff"}, true);
+  EXPECT_EQ(diff.exit_code, 1);
+  EXPECT_EQ(nlohmann::json::parse(diff.out)["differences"].size(), 2u);
+  auto dry = params({"reset", "--dry-run"});
+  EXPECT_EQ(dry.exit_code, 0);
+  EXPECT_NE(dry.out.find("would set CAL_ACC0_ID: 5 -> 1310988"), std::string::npos) << dry.out;
+  auto reset = params({"reset"}, true);
+  EXPECT_EQ(reset.exit_code, 0) << reset.err;
+  const auto j = nlohmann::json::parse(reset.out);
+  EXPECT_EQ(j["set"].size(), 2u);
+  EXPECT_TRUE(j["failed"].empty());
+  EXPECT_GT(j["unchanged"].size(), 40u);
+  auto after = params({"diff"});
+  EXPECT_EQ(after.exit_code, 0);
+  EXPECT_NE(after.out.find("no differences"), std::string::npos);
+  EXPECT_EQ(params({"check"}).exit_code, 0);
+}
+
+TEST_F(ParamsE2E, ExportLoadRoundTripGetAndBadValues) {
+  const auto file = test::temp_dir() + "/board.params";
+  EXPECT_EQ(params({"set", "MPC_XY_P", "1.3"}).exit_code, 0);
+  ASSERT_EQ(params({"export", file}).exit_code, 0);
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("1\t1\tMPC_XY_P\t1.3\t9"), std::string::npos);
+  EXPECT_NE(text.find("1\t1\tCAL_ACC0_ID\t1310988\t6"), std::string::npos);
+  EXPECT_EQ(params({"set", "MPC_XY_P", "0.5"}).exit_code, 0);
+  auto load = params({"load", file});
+  EXPECT_EQ(load.exit_code, 0) << load.out << load.err;
+  EXPECT_NE(load.out.find("set MPC_XY_P: 0.5 -> 1.3"), std::string::npos) << load.out;
+  auto get = params({"get", "MPC_XY_P"});
+  EXPECT_EQ(get.out, "1.3\n");
+  EXPECT_EQ(params({"set", "MPC_XY_P", "abc"}).exit_code, 2);
+  EXPECT_EQ(params({"set", "MPC_XY_P", "1000"}).exit_code, 1);  // out of range: the board keeps its value
+  EXPECT_EQ(params({"get", "NO_SUCH_PARAM"}).exit_code, 1);
+  auto show = params({"show", "CAL_*_ID"}, true);
+  EXPECT_EQ(nlohmann::json::parse(show.out)["params"].size(), 4u);  // ACC0, GYRO0, MAG0, BARO0
+}
+
+TEST_F(ParamsE2E, WorksThroughARunningSimSession) {
+  const uint16_t clients = test::free_udp_port();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil_), "--local-port",
+                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", std::to_string(clients), "--duration", "30"});
+  ASSERT_TRUE(sim.wait_for_stderr("clients on", 10s)) << sim.err();
+  // No direct path given (a port nobody answers on): auto must go through the session.
+  auto r = test::run_hitl({"params", "--session-port", std::to_string(clients), "-i", "127.0.0.1", "--port",
+                           std::to_string(test::free_udp_port()), "--local-port", std::to_string(test::free_udp_port()),
+                           "get", "SYS_HITL"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "1\n");
+  EXPECT_NE(r.err.find("through the session"), std::string::npos) << r.err;
+  sim.signal(SIGINT);
+  sim.wait(10s);
+}
+
+TEST(ParamsNoBoard, SaysWhatIsWrongAndExitsOne) {
+  auto none = test::run_hitl({"params", "-i", "127.0.0.1", "--port", std::to_string(test::free_udp_port()), "--local-port",
+                              std::to_string(test::free_udp_port()), "--session-port", std::to_string(test::free_udp_port()),
+                              "--timeout", "1", "get", "SYS_HITL"});
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_NE(none.err.find("no autopilot HEARTBEAT"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("answers only the first address"), std::string::npos);
+
+  net::UdpEndpoint::Config c;
+  c.bind_address = "0.0.0.0";
+  auto holder = net::UdpEndpoint::open(c);
+  ASSERT_TRUE(holder.ok());
+  auto busy = test::run_hitl({"params", "--local-port", std::to_string(holder->local_address().port()), "--session-port",
+                              std::to_string(test::free_udp_port()), "--timeout", "1", "show"});
+  EXPECT_EQ(busy.exit_code, 1);
+  EXPECT_NE(busy.err.find("hitl bridge"), std::string::npos) << busy.err;
+}
+
+}  // namespace
+}  // namespace hitl
