@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   add_sim_command(app, options, state);
   add_target_command(app, options, state);
   add_params_command(app, options, state);
+  add_arm_commands(app, options, state);
+  add_shell_command(app, options, state);
 
   try {
     app.parse(argc, argv);

@@ -73,6 +73,7 @@ struct Board::Impl {
   uint64_t next_actuator_us = 0;
   bool sensor_time_started = false;
   uint64_t sensor_time_origin_us = 0;
+  uint64_t sensor_time_base_us = 0;
   uint64_t hil_sensor_received = 0, hil_gps_received = 0, odometry_received = 0, actuators_sent = 0;
   uint64_t commands_received = 0, params_set = 0;
   std::array<double, 4> motors{};
@@ -479,12 +480,16 @@ struct Board::Impl {
     }
   }
 
+  /// Lockstep: the board's clock follows HIL_SENSOR.time_usec from the first one on, continuing
+  /// from the wall-clock time it had until then (so HEARTBEATs flow before the simulator starts).
   void advance_sensor_clock(uint64_t time_usec) {
     if (!sensor_time_started) {
       sensor_time_started = true;
       sensor_time_origin_us = time_usec;
+      sensor_time_base_us = now_us;
     }
-    if (time_usec >= sensor_time_origin_us) now_us = std::max(now_us, time_usec - sensor_time_origin_us + 4000);
+    if (time_usec >= sensor_time_origin_us)
+      now_us = std::max(now_us, sensor_time_base_us + (time_usec - sensor_time_origin_us) + 4000);
   }
 
   // --- the board's own processing ----------------------------------------------------------------
@@ -663,7 +668,8 @@ Expected<Board::EndReason> Board::run(const std::atomic<bool>& stop, Observer& o
   uint64_t next_status_us = 1000000;
   bool announced = false;
   while (!stop.load()) {
-    if (!s.config.lockstep) s.now_us = monotonic_us() - s.start_us;
+    const bool wall_clock = !s.config.lockstep || !s.sensor_time_started;
+    if (wall_clock) s.now_us = monotonic_us() - s.start_us;
     if (s.config.duration_s > 0 && static_cast<double>(s.now_us) * 1e-6 >= s.config.duration_s) return EndReason::Duration;
     // Wait for input until the next thing is due (at most 5 ms).
     pollfd fds[3];
@@ -672,12 +678,12 @@ Expected<Board::EndReason> Board::run(const std::atomic<bool>& stop, Observer& o
     if (s.gcs) fds[n++] = {s.gcs->fd(), POLLIN, 0};
     if (s.vio) fds[n++] = {s.vio->fd(), POLLIN, 0};
     int timeout_ms = 5;
-    if (!s.config.lockstep) {
+    if (wall_clock) {
       const uint64_t next = std::min(s.split.next_due_us(), s.now_us + 5000);
       timeout_ms = static_cast<int>(next > s.now_us ? (next - s.now_us + 999) / 1000 : 0);
     }
     ::poll(fds, n, timeout_ms);
-    if (!s.config.lockstep) s.now_us = monotonic_us() - s.start_us;
+    if (!s.config.lockstep || !s.sensor_time_started) s.now_us = monotonic_us() - s.start_us;
     auto handler = [&](const mavlink::Frame& f, MavlinkInstance& inst) { s.handle_frame(f, inst); };
     s.hil->poll(handler);
     if (s.gcs) s.gcs->poll(handler);

@@ -1,0 +1,63 @@
+// hitl shell: the PX4 shell from the host (SERIAL_CONTROL, as mavlink_shell.py), one command
+// with -c or line by line from stdin.
+#include <unistd.h>
+
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/link_options.h"
+#include "engine/vehicle/shell_client.h"
+
+namespace hitl::cli {
+namespace {
+
+struct ShellOptions {
+  vehicle::LinkOptions link;
+  std::string command;
+  double timeout_s = 5.0;
+};
+
+int run_shell(const GlobalOptions& g, const ShellOptions& o) {
+  auto link = vehicle::VehicleLink::connect(o.link);
+  if (!link) {
+    log_error("shell", link.error().message);
+    return kExitFailed;
+  }
+  log_info(g, "hitl shell: autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
+  vehicle::ShellClient shell(**link);
+  auto one = [&](const std::string& line) {
+    auto out = shell.run(line, o.timeout_s);
+    if (!out) {
+      log_error("shell", out.error().message);
+      return false;
+    }
+    if (g.json) print_json_line({{"type", "shell"}, {"command", line}, {"output", *out}});
+    else std::cout << *out << std::flush;
+    return true;
+  };
+  if (!o.command.empty()) return one(o.command) ? kExitOk : kExitFailed;
+  const bool tty = ::isatty(STDIN_FILENO) == 1;
+  std::string line;
+  for (;;) {
+    if (tty) std::cout << "pxh> " << std::flush;
+    if (!std::getline(std::cin, line)) break;
+    if (line == "exit" || line == "quit") break;
+    if (line.empty()) continue;
+    if (!one(line)) return kExitFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_shell_command(CLI::App& app, GlobalOptions& options, RunState& state) {
+  auto o = std::make_shared<ShellOptions>();
+  auto* sub = app.add_subcommand("shell", "The PX4 shell on the board over MAVLink (one command with -c, or lines from stdin)");
+  add_link_options(sub, o->link);
+  sub->add_option("-c,--command", o->command, "Run one command and print its output, e.g. \"qshell dsp_hitl status\"");
+  sub->add_option("--command-timeout", o->timeout_s, "Seconds a command may take")->capture_default_str()->check(CLI::PositiveNumber);
+  sub->footer("Examples:\n  hitl shell -c \"qshell dsp_hitl status\"\n  hitl shell            # interactive; exit with Ctrl-D or 'exit'");
+  sub->callback([&options, &state, o]() { state.exit_code = run_shell(options, *o); });
+}
+
+}  // namespace hitl::cli

@@ -1,0 +1,58 @@
+// hitl arm / disarm / shell end to end against hitl target (and hitl sim for a flyable board).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+
+#include "tests/support/process.h"
+
+namespace hitl {
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST(OperateE2E, ArmDeniedWithTheReasonThenArmedAndDisarmedShellAnswers) {
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), local = test::free_udp_port(),
+                 clients = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  auto direct = [&](std::vector<std::string> args) {
+    std::vector<std::string> a{"--json"};
+    a.insert(a.end(), args.begin(), args.end());
+    a.insert(a.end(), {"-i", "127.0.0.1", "--port", std::to_string(gcs), "--local-port", std::to_string(local),
+                       "--session-port", std::to_string(clients)});
+    return test::run_hitl(a);
+  };
+  // No simulator yet: no sensor data, so arming is refused and the board says why.
+  auto denied = direct({"arm"});
+  EXPECT_EQ(denied.exit_code, 1);
+  const auto d = nlohmann::json::parse(denied.out);
+  EXPECT_FALSE(d["ok"].get<bool>());
+  EXPECT_NE(d["reason"].get<std::string>().find("Preflight Fail"), std::string::npos) << denied.out;
+
+  auto shell = direct({"shell", "-c", "qshell dsp_hitl status"});
+  EXPECT_EQ(shell.exit_code, 0) << shell.err;
+  EXPECT_NE(nlohmann::json::parse(shell.out)["output"].get<std::string>().find("=== IMU Section ==="), std::string::npos);
+
+  // With the simulator the estimator converges; the direct link keeps working beside the session.
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", std::to_string(clients), "--lockstep",
+                     "--speed", "5", "--duration", "200"});
+  bool armed = false;
+  for (int i = 0; i < 30 && !armed; ++i) {  // the estimator needs ~6 s of simulated time
+    auto r = direct({"arm"});
+    armed = r.exit_code == 0;
+    if (!armed) std::this_thread::sleep_for(300ms);
+  }
+  EXPECT_TRUE(armed);
+  auto disarm = direct({"disarm"});
+  EXPECT_EQ(disarm.exit_code, 0) << disarm.out << disarm.err;
+  sim.signal(SIGINT);
+  board.signal(SIGINT);
+  sim.wait(10s);
+  board.wait(10s);
+}
+
+}  // namespace
+}  // namespace hitl
