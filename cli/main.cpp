@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   add_params_command(app, options, state);
   add_arm_commands(app, options, state);
   add_shell_command(app, options, state);
+  add_fly_command(app, options, state);
 
   try {
     app.parse(argc, argv);

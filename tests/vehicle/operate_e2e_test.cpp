@@ -48,6 +48,22 @@ TEST(OperateE2E, ArmDeniedWithTheReasonThenArmedAndDisarmedShellAnswers) {
   EXPECT_TRUE(armed);
   auto disarm = direct({"disarm"});
   EXPECT_EQ(disarm.exit_code, 0) << disarm.out << disarm.err;
+
+  // Fly: arm, take off to 3 m, hold, land; each waits for the outcome.
+  ASSERT_EQ(direct({"arm"}).exit_code, 0);
+  auto takeoff = direct({"fly", "takeoff", "--alt", "3"});
+  ASSERT_EQ(takeoff.exit_code, 0) << takeoff.out << takeoff.err;
+  const auto t = nlohmann::json::parse(takeoff.out);
+  EXPECT_GE(t["altitude_m"].get<double>(), 2.7);
+  EXPECT_EQ(t["target_m"], 3.0);
+  auto hold = direct({"fly", "hold"});
+  EXPECT_EQ(hold.exit_code, 0) << hold.out;
+  auto land = direct({"fly", "land"});
+  EXPECT_EQ(land.exit_code, 0) << land.out << land.err;
+  EXPECT_EQ(nlohmann::json::parse(land.out)["message"], "landed and disarmed");
+  // Disarmed on the ground: takeoff is refused and says so.
+  auto refused = direct({"fly", "takeoff"});
+  EXPECT_EQ(refused.exit_code, 1);
   sim.signal(SIGINT);
   board.signal(SIGINT);
   sim.wait(10s);

@@ -1,0 +1,131 @@
+// hitl fly takeoff | land | hold: one command to the board, then wait for the outcome (altitude
+// reached; landed and disarmed; Hold shown in HEARTBEAT) with progress and a timeout.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/link_options.h"
+#include "engine/mavlink/enums.h"
+#include "engine/vehicle/command_client.h"
+#include "engine/vehicle/param_client.h"
+
+namespace hitl::cli {
+namespace {
+
+namespace msg = mavlink::msg;
+
+struct FlyOptions {
+  vehicle::LinkOptions link;
+  std::optional<double> alt_m;  ///< takeoff: metres above home (default: the board's MIS_TAKEOFF_ALT)
+  double wait_s = 60;           ///< how long to wait for the outcome
+};
+
+// PX4 custom_mode of Hold: AUTO (4) << 16 | LOITER (3) << 24.
+constexpr uint32_t kPx4Hold = (4u << 16) | (3u << 24);
+
+int finish(const GlobalOptions& g, const char* action, bool ok, const std::string& text, nlohmann::json extra = {}) {
+  if (g.json) {
+    nlohmann::json j = {{"type", "fly"}, {"action", action}, {"ok", ok}, {"message", text}};
+    for (auto& [k, v] : extra.items()) j[k] = v;
+    print_json_line(j);
+  } else {
+    std::cout << text << '\n';
+  }
+  return ok ? kExitOk : kExitFailed;
+}
+
+int run_fly(const GlobalOptions& g, const FlyOptions& o, const std::string& action) {
+  auto link = vehicle::VehicleLink::connect(o.link);
+  if (!link) {
+    log_error("fly", link.error().message);
+    return kExitFailed;
+  }
+  log_info(g, "hitl fly " + action + ": autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
+  vehicle::CommandClient commands(**link);
+  const bool progress = ::isatty(STDERR_FILENO) == 1 && !g.quiet;
+
+  if (action == "hold") {
+    auto r = commands.send(mavlink::cmd::kDoSetMode, {1, 4, 3, 0, 0, 0, 0});
+    if (!r) return finish(g, "hold", false, r.error().message);
+    if (!r->accepted()) return finish(g, "hold", false, "Hold " + r->text());
+    const bool shown = (*link)->wait(5, [](const mavlink::Frame& f) {
+      return f.is<msg::Heartbeat>() && f.as<msg::Heartbeat>().custom_mode == kPx4Hold;
+    });
+    return finish(g, "hold", shown, shown ? "holding position" : "Hold accepted, but HEARTBEAT did not show it within 5 s");
+  }
+
+  if (action == "takeoff") {
+    double target_m = 2.5;
+    float param7 = NAN;  // NaN: the board's MIS_TAKEOFF_ALT above home
+    if (o.alt_m) {
+      // NAV_TAKEOFF's altitude is AMSL: home's altitude from GLOBAL_POSITION_INT (alt - relative_alt).
+      std::optional<double> home_amsl_m;
+      (*link)->wait(3, [&](const mavlink::Frame& f) {
+        if (!f.is<msg::GlobalPositionInt>()) return false;
+        const auto p = f.as<msg::GlobalPositionInt>();
+        home_amsl_m = (p.alt - p.relative_alt) / 1000.0;
+        return true;
+      });
+      if (!home_amsl_m) return finish(g, "takeoff", false, "no GLOBAL_POSITION_INT from the board: is its position estimate valid?");
+      target_m = *o.alt_m;
+      param7 = static_cast<float>(*home_amsl_m + *o.alt_m);
+    } else if (auto p = vehicle::ParamClient(**link).get("MIS_TAKEOFF_ALT")) {
+      target_m = p->as_double();
+    }
+    auto r = commands.send(mavlink::cmd::kNavTakeoff, {0, 0, 0, NAN, NAN, NAN, param7});
+    if (!r) return finish(g, "takeoff", false, r.error().message);
+    if (!r->accepted()) return finish(g, "takeoff", false, "Takeoff " + r->text());
+    double alt_m = 0;
+    const bool reached = (*link)->wait(o.wait_s, [&](const mavlink::Frame& f) {
+      if (!f.is<msg::GlobalPositionInt>()) return false;
+      alt_m = f.as<msg::GlobalPositionInt>().relative_alt / 1000.0;
+      if (progress) std::fprintf(stderr, "\raltitude %5.2f / %.2f m", alt_m, target_m);
+      return alt_m >= target_m - 0.3;
+    });
+    if (progress) std::fprintf(stderr, "\n");
+    char text[128];
+    std::snprintf(text, sizeof text, reached ? "at %.2f m (target %.2f m)" : "only %.2f m of %.2f m after the timeout", alt_m, target_m);
+    return finish(g, "takeoff", reached, text, {{"altitude_m", alt_m}, {"target_m", target_m}});
+  }
+
+  // land: NAV_LAND, then wait for the board to detect the touchdown and disarm.
+  auto r = commands.send(mavlink::cmd::kNavLand, {0, 0, 0, NAN, NAN, NAN, NAN});
+  if (!r) return finish(g, "land", false, r.error().message);
+  if (!r->accepted()) return finish(g, "land", false, "Land " + r->text());
+  double alt_m = NAN;
+  const bool disarmed = (*link)->wait(o.wait_s, [&](const mavlink::Frame& f) {
+    if (f.is<msg::GlobalPositionInt>()) {
+      alt_m = f.as<msg::GlobalPositionInt>().relative_alt / 1000.0;
+      if (progress) std::fprintf(stderr, "\raltitude %5.2f m", alt_m);
+    }
+    return f.is<msg::Heartbeat>() && (f.as<msg::Heartbeat>().base_mode & mavlink::mode_flag::kSafetyArmed) == 0;
+  });
+  if (progress) std::fprintf(stderr, "\n");
+  return finish(g, "land", disarmed, disarmed ? "landed and disarmed" : "not disarmed after the timeout (still landing?)",
+                {{"altitude_m", std::isfinite(alt_m) ? nlohmann::json(alt_m) : nlohmann::json(nullptr)}});
+}
+
+}  // namespace
+
+void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
+  auto o = std::make_shared<FlyOptions>();
+  auto* sub = app.add_subcommand("fly", "Take off, land or hold, and wait for the outcome");
+  sub->require_subcommand(1);
+  add_link_options(sub, o->link);
+  sub->add_option("--wait", o->wait_s, "Seconds to wait for the outcome")->capture_default_str()->check(CLI::PositiveNumber);
+  sub->footer("Arm first (hitl arm). Exit: 0 the outcome was seen, 1 refused or timed out.");
+  auto add = [&](const char* name, const char* help) {
+    auto* c = sub->add_subcommand(name, help);
+    c->callback([&options, &state, o, action = std::string(name)]() { state.exit_code = run_fly(options, *o, action); });
+    return c;
+  };
+  add("takeoff", "NAV_TAKEOFF; done when the altitude is reached")
+      ->add_option("--alt", o->alt_m, "Metres above home (default: the board's MIS_TAKEOFF_ALT)")->check(CLI::PositiveNumber);
+  add("land", "NAV_LAND; done when the board has landed and disarmed");
+  add("hold", "Switch to Hold (PX4 AUTO.LOITER); done when HEARTBEAT shows it");
+}
+
+}  // namespace hitl::cli
