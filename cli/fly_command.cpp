@@ -11,6 +11,7 @@
 #include "engine/mavlink/enums.h"
 #include "engine/vehicle/command_client.h"
 #include "engine/vehicle/param_client.h"
+#include "engine/vehicle/trajectory_pilot.h"
 
 namespace hitl::cli {
 namespace {
@@ -21,6 +22,8 @@ struct FlyOptions {
   vehicle::LinkOptions link;
   std::optional<double> alt_m;  ///< takeoff: metres above home (default: the board's MIS_TAKEOFF_ALT)
   double wait_s = 60;           ///< how long to wait for the outcome
+  std::string trajectory_file;
+  double rc_rate_hz = 20;
 };
 
 // PX4 custom_mode of Hold: AUTO (4) << 16 | LOITER (3) << 24.
@@ -37,13 +40,96 @@ int finish(const GlobalOptions& g, const char* action, bool ok, const std::strin
   return ok ? kExitOk : kExitFailed;
 }
 
+/// The trajectory_rc pilot from the host, on the board's own estimate (LOCAL_POSITION_NED and
+/// ATTITUDE, asked for at 50 Hz), on the board's clock (time_boot_ms), so any simulator speed works.
+int fly_trajectory(const GlobalOptions& g, const FlyOptions& o, vehicle::VehicleLink& link, vehicle::Trajectory trajectory) {
+  vehicle::CommandClient commands(link);
+  for (uint32_t id : {msg::LocalPositionNed::kId, msg::Attitude::kId}) {
+    auto r = commands.send(mavlink::cmd::kSetMessageInterval, {static_cast<float>(id), 20000.0f, 0, 0, 0, 0, 0});
+    if (!r || !r->accepted()) log_info(g, "hitl fly: the board did not take a 50 Hz stream request; flying on its default rates");
+  }
+  vehicle::PilotConfig pc;
+  pc.rc_rate_hz = o.rc_rate_hz;
+  pc.target_system = link.target_sysid();
+  pc.target_component = link.target_compid();
+  std::optional<double> home_amsl_m;
+  std::optional<std::array<double, 3>> origin_NED_m;
+  std::array<double, 3> p_NED_m{};
+  double yaw_NED_rad = 0, t_s = 0;
+  bool have_yaw = false;
+  nlohmann::json trace = nlohmann::json::array();
+  std::optional<vehicle::TrajectoryPilot> pilot;
+  vehicle::PilotState last_state = vehicle::PilotState::Init;
+  auto on_frame = [&](const mavlink::Frame& f) {
+    if (f.is<msg::GlobalPositionInt>() && !home_amsl_m) {
+      const auto p = f.as<msg::GlobalPositionInt>();
+      home_amsl_m = (p.alt - p.relative_alt) / 1000.0;
+    } else if (f.is<msg::Attitude>()) {
+      yaw_NED_rad = f.as<msg::Attitude>().yaw;
+      have_yaw = true;
+    } else if (f.is<msg::LocalPositionNed>()) {
+      const auto l = f.as<msg::LocalPositionNed>();
+      p_NED_m = {l.x, l.y, l.z};
+      if (!origin_NED_m) origin_NED_m = p_NED_m;
+      t_s = l.time_boot_ms / 1000.0;
+    }
+    if (pilot) pilot->on_board_frame(f);
+    return false;
+  };
+  // Wait for the estimate and home before the pilot starts.
+  link.wait(o.wait_s, [&](const mavlink::Frame& f) {
+    on_frame(f);
+    return home_amsl_m && origin_NED_m && have_yaw;
+  });
+  if (!home_amsl_m || !origin_NED_m)
+    return finish(g, "trajectory", false, "no position estimate from the board (LOCAL_POSITION_NED, GLOBAL_POSITION_INT)");
+  pc.home_alt_msl_m = *home_amsl_m;
+  pilot.emplace(std::move(trajectory), pc);
+  const double start_s = t_s;
+  while (!pilot->finished()) {
+    link.wait(0.02, on_frame);
+    vehicle::PilotPose pose;
+    // NED -> ENU relative to where the vehicle was at the start; yaw: ENU = pi/2 - NED heading.
+    pose.p_ENU_m = {p_NED_m[1] - (*origin_NED_m)[1], p_NED_m[0] - (*origin_NED_m)[0], -(p_NED_m[2] - (*origin_NED_m)[2])};
+    pose.yaw_ENU_rad = vehicle::wrap_pi(M_PI / 2 - yaw_NED_rad);
+    auto out = pilot->step(t_s - start_s, pose);
+    for (const auto& c : out.commands) link.send(c);
+    if (out.rc) link.send(*out.rc);
+    if (out.event && !g.quiet) std::cerr << "hitl fly: " << *out.event << '\n';
+    if (pilot->state() == vehicle::PilotState::Trajectory && g.json)
+      trace.push_back({{"t_s", t_s - start_s}, {"p_enu_m", pose.p_ENU_m}});
+    if (pilot->state() != last_state) last_state = pilot->state();
+  }
+  const auto track = pilot->tracking();
+  char text[200];
+  std::snprintf(text, sizeof text, "%s%s; tracking error (board's estimate) RMS %.2f m, max %.2f m",
+                vehicle::to_string(pilot->state()), pilot->failure().empty() ? "" : (": " + pilot->failure()).c_str(),
+                track.rms_m, track.max_m);
+  return finish(g, "trajectory", pilot->state() == vehicle::PilotState::Done, text,
+                {{"state", vehicle::to_string(pilot->state())},
+                 {"rms_m", track.rms_m},
+                 {"max_m", track.max_m},
+                 {"samples", track.samples},
+                 {"trace", trace}});
+}
+
 int run_fly(const GlobalOptions& g, const FlyOptions& o, const std::string& action) {
+  std::optional<vehicle::Trajectory> trajectory;
+  if (action == "trajectory") {  // a bad file is refused before anything is sent
+    auto t = vehicle::Trajectory::load(o.trajectory_file);
+    if (!t) {
+      log_error("fly", t.error().message);
+      return kExitUsage;
+    }
+    trajectory = std::move(t.value());
+  }
   auto link = vehicle::VehicleLink::connect(o.link);
   if (!link) {
     log_error("fly", link.error().message);
     return kExitFailed;
   }
   log_info(g, "hitl fly " + action + ": autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
+  if (trajectory) return fly_trajectory(g, o, **link, std::move(*trajectory));
   vehicle::CommandClient commands(**link);
   const bool progress = ::isatty(STDERR_FILENO) == 1 && !g.quiet;
 
@@ -126,6 +212,12 @@ void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       ->add_option("--alt", o->alt_m, "Metres above home (default: the board's MIS_TAKEOFF_ALT)")->check(CLI::PositiveNumber);
   add("land", "NAV_LAND; done when the board has landed and disarmed");
   add("hold", "Switch to Hold (PX4 AUTO.LOITER); done when HEARTBEAT shows it");
+  auto* traj = add("trajectory",
+                   "The spec's trajectory_rc automation from the host: arm, take off, fly the waypoints by stick "
+                   "(RC_CHANNELS_OVERRIDE), hold, land, disarm; report the tracking error (--json: the trace)");
+  traj->add_option("FILE", o->trajectory_file, "Waypoints {t, x, y, z, yaw} in ENU metres/radians")->required()
+      ->check(CLI::ExistingFile);
+  traj->add_option("--rate", o->rc_rate_hz, "RC_CHANNELS_OVERRIDE rate, Hz")->capture_default_str()->check(CLI::Range(2.0, 100.0));
 }
 
 }  // namespace hitl::cli
