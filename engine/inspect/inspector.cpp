@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "engine/mavlink/enums.h"
+#include "engine/mavlink/heartbeat.h"
 #include "engine/mavlink/messages.h"
 
 namespace hitl::inspect {
@@ -85,13 +86,8 @@ void Inspector::handle(const mavlink::Frame& frame, const std::string& source, i
 }
 
 void Inspector::send_heartbeat() {
-  mavlink::msg::Heartbeat hb;
-  hb.type = static_cast<uint8_t>(mavlink::MavType::Gcs);
-  hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
-  hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
-  hb.mavlink_version = mavlink::kMavlinkVersion;
   mavlink::FrameBuffer buf;
-  const std::size_t n = encoder_.encode(hb, buf);
+  const std::size_t n = encoder_.encode(mavlink::gcs_heartbeat(), buf);
   (void)endpoint_->send({buf.data(), n});  // an unreachable board shows as silence, not as an error
 }
 

@@ -8,6 +8,7 @@
 #include <chrono>
 
 #include "engine/mavlink/enums.h"
+#include "engine/mavlink/heartbeat.h"
 
 namespace hitl::vehicle {
 namespace {
@@ -56,12 +57,7 @@ VehicleLink::VehicleLink(net::UdpEndpoint endpoint, const LinkOptions& options, 
       description_(std::move(description)) {}
 
 void VehicleLink::heartbeat() {
-  mavlink::msg::Heartbeat hb;
-  hb.type = static_cast<uint8_t>(mavlink::MavType::Gcs);
-  hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
-  hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
-  hb.mavlink_version = mavlink::kMavlinkVersion;
-  send(hb);
+  send(mavlink::gcs_heartbeat());
   last_heartbeat_s_ = now_s();
 }
 
