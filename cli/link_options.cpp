@@ -6,7 +6,7 @@ void add_link_options(CLI::App* command, vehicle::LinkOptions& o) {
   const char* group = "Connection";
   command->add_option("--connect", o.connect,
                       "auto (a running hitl sim/bridge on 127.0.0.1:14600, else the board's GCS instance), "
-                      "udp:HOST:PORT or udpin:PORT")
+                      "udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT")
       ->capture_default_str()->group(group);
   command->add_option("-i,--target-ip", o.target_ip, "The board's IP for the direct path")->capture_default_str()->group(group);
   command->add_option("--port", o.gcs_port, "The board's GCS MAVLink instance")->capture_default_str()

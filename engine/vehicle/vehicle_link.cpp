@@ -48,8 +48,10 @@ bool maybe_listening(const net::SocketAddress& address) {
 
 }  // namespace
 
-VehicleLink::VehicleLink(net::UdpEndpoint endpoint, const LinkOptions& options, std::string description)
-    : endpoint_(std::move(endpoint)),
+VehicleLink::VehicleLink(std::optional<net::UdpEndpoint> udp, std::optional<net::TcpClient> tcp, const LinkOptions& options,
+                         std::string description)
+    : udp_(std::move(udp)),
+      tcp_(std::move(tcp)),
       messages_(mavlink::MessageSet::compiled()),
       parser_(messages_),
       encoder_(options.own_sysid, options.own_compid),
@@ -61,22 +63,44 @@ void VehicleLink::heartbeat() {
   last_heartbeat_s_ = now_s();
 }
 
+void VehicleLink::send_bytes(std::span<const uint8_t> bytes) {
+  if (tcp_) {
+    if (!closed_ && !tcp_->send(bytes)) closed_ = true;
+  } else {
+    (void)udp_->send(bytes);
+  }
+}
+
 bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
   const double end = now_s() + timeout_s;
+  bool done = false;
+  auto on_frame = [&](const mavlink::Frame& f) {
+    if (done || f.desc == nullptr) return;
+    if (sysid_ != 0 && f.sysid != sysid_) return;
+    done = handler(f);
+  };
   for (;;) {
+    if (closed_) return false;
     if (now_s() - last_heartbeat_s_ >= 1.0) heartbeat();
     const double left = end - now_s();
     if (left <= 0) return false;
-    if (!endpoint_.wait_readable(static_cast<int>(std::min(left, 0.2) * 1000) + 1)) continue;
-    bool done = false;
-    while (auto d = endpoint_.receive()) {
-      parser_.parse_datagram(d->bytes, [&](const mavlink::Frame& f) {
-        if (done || f.desc == nullptr) return;
-        if (sysid_ != 0 && f.sysid != sysid_) return;
-        done = handler(f);
-      });
-      if (done) return true;
+    const int wait_ms = static_cast<int>(std::min(left, 0.2) * 1000) + 1;
+    if (tcp_) {
+      if (!tcp_->wait_readable(wait_ms)) continue;
+      auto bytes = tcp_->receive();
+      if (!bytes) {
+        closed_ = true;  // a stream does not come back: the caller's wait ends
+        return false;
+      }
+      parser_.feed(*bytes, on_frame);
+    } else {
+      if (!udp_->wait_readable(wait_ms)) continue;
+      while (auto d = udp_->receive()) {
+        parser_.parse_datagram(d->bytes, on_frame);
+        if (done) break;
+      }
     }
+    if (done) return true;
   }
 }
 
@@ -95,7 +119,7 @@ bool VehicleLink::discover(double timeout_s) {
 Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& options) {
   const std::string& spec = options.connect;
   auto make = [&](net::UdpEndpoint ep, std::string description) {
-    return std::unique_ptr<VehicleLink>(new VehicleLink(std::move(ep), options, std::move(description)));
+    return std::unique_ptr<VehicleLink>(new VehicleLink(std::move(ep), std::nullopt, options, std::move(description)));
   };
   std::unique_ptr<VehicleLink> link;
   if (spec == "auto") {
@@ -128,8 +152,15 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
     auto ep = open_endpoint("0.0.0.0", *port, std::nullopt, net::PartnerPolicy::LastSender, "--connect udpin");
     if (!ep) return ep.error();
     link = make(std::move(ep.value()), "listening on UDP " + std::to_string(*port));
+  } else if (spec.rfind("tcp:", 0) == 0) {
+    auto peer = net::SocketAddress::parse(spec.substr(4), "--connect");
+    if (!peer) return peer.error();
+    auto tcp = net::TcpClient::connect(*peer, static_cast<int>(options.timeout_s * 1000), "--connect");
+    if (!tcp) return tcp.error();
+    link = std::unique_ptr<VehicleLink>(
+        new VehicleLink(std::nullopt, std::move(tcp.value()), options, "over TCP to " + peer->to_string()));
   } else {
-    return Error{"--connect: '" + spec + "' is not auto, udp:HOST:PORT or udpin:PORT"};
+    return Error{"--connect: '" + spec + "' is not auto, udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT"};
   }
   if (!link->discover(options.timeout_s))
     return Error{"no autopilot HEARTBEAT " + link->description() + " within " + std::to_string(static_cast<int>(options.timeout_s)) +

@@ -5,6 +5,7 @@
 //     MAVLink instance answers only the first address and port it heard, for the life of its process.
 //   udp:HOST:PORT   talk to that address from --local-port (default 14562)
 //   udpin:PORT      listen on PORT and answer whoever talks first
+//   tcp:HOST:PORT   a TCP MAVLink server (mavlink-router, MAVProxy, PX4 started with -t)
 // The autopilot is discovered from its HEARTBEAT (autopilot != MAV_AUTOPILOT_INVALID).
 #pragma once
 
@@ -18,6 +19,7 @@
 #include "engine/mavlink/frame_encoder.h"
 #include "engine/mavlink/frame_parser.h"
 #include "engine/mavlink/messages.h"
+#include "engine/net/tcp_client.h"
 #include "engine/net/udp_endpoint.h"
 
 namespace hitl::vehicle {
@@ -47,7 +49,7 @@ class VehicleLink {
   void send(const M& message) {
     mavlink::FrameBuffer buf;
     const std::size_t n = encoder_.encode(message, buf);
-    (void)endpoint_.send({buf.data(), n});
+    send_bytes({buf.data(), n});
   }
   /// Reads frames from the target system for up to `timeout_s` (sending our HEARTBEAT each
   /// second); true as soon as `handler` returns true.
@@ -59,11 +61,15 @@ class VehicleLink {
   const std::string& description() const { return description_; }
 
  private:
-  VehicleLink(net::UdpEndpoint endpoint, const LinkOptions& options, std::string description);
+  VehicleLink(std::optional<net::UdpEndpoint> udp, std::optional<net::TcpClient> tcp, const LinkOptions& options,
+              std::string description);
+  void send_bytes(std::span<const uint8_t> bytes);
   void heartbeat();
   bool discover(double timeout_s);
 
-  net::UdpEndpoint endpoint_;
+  std::optional<net::UdpEndpoint> udp_;
+  std::optional<net::TcpClient> tcp_;  ///< exactly one of the two
+  bool closed_ = false;                ///< the TCP server went away
   mavlink::MessageSet messages_;
   mavlink::FrameParser parser_;
   mavlink::FrameEncoder encoder_;

@@ -9,6 +9,7 @@
 #include "engine/mavlink/frame_parser.h"
 #include "engine/vehicle/command_client.h"
 #include "engine/vehicle/param_client.h"
+#include "engine/net/tcp_server.h"
 #include "engine/vehicle/shell_client.h"
 #include "tests/support/mavlink_peer.h"
 
@@ -161,6 +162,55 @@ TEST(ShellClient, CollectsOutputUntilThePromptAndDropsTheEcho) {
   auto out = shell.run("ver all");
   ASSERT_TRUE(out.ok()) << out.error().message;
   EXPECT_EQ(*out, "line one\nline two that is long enough to need a second chunk of output\n");
+}
+
+TEST(VehicleLink, TcpServerBoardAnswersCommands) {
+  auto server = net::TcpServer::listen("127.0.0.1", 0, "test board");
+  ASSERT_TRUE(server.ok()) << server.error().message;
+  const uint16_t port = server->local_address().port();
+  std::atomic<bool> running{true};
+  std::thread board([&] {
+    auto set = mavlink::MessageSet::compiled();
+    mavlink::FrameParser parser(set);
+    mavlink::FrameEncoder enc(1, 1);
+    mavlink::FrameBuffer buf;
+    while (running && !server->accept_client(20)) {
+    }
+    auto next_hb = std::chrono::steady_clock::now();
+    while (running && server->connected()) {
+      if (std::chrono::steady_clock::now() >= next_hb) {
+        msg::Heartbeat hb;
+        hb.type = 2;
+        hb.autopilot = 12;
+        (void)server->send({buf.data(), enc.encode(hb, buf)});
+        next_hb += 100ms;
+      }
+      if (!server->wait_readable(10)) continue;
+      auto bytes = server->receive();
+      if (!bytes) break;
+      parser.feed(*bytes, [&](const mavlink::Frame& f) {
+        if (!f.is<msg::CommandLong>()) return;
+        msg::CommandAck ack;
+        ack.command = f.as<msg::CommandLong>().command;
+        (void)server->send({buf.data(), enc.encode(ack, buf)});
+      });
+    }
+  });
+  LinkOptions o;
+  o.connect = "tcp:127.0.0.1:" + std::to_string(port);
+  auto link = VehicleLink::connect(o);
+  ASSERT_TRUE(link.ok()) << link.error().message;
+  EXPECT_EQ((*link)->target_sysid(), 1);
+  EXPECT_NE((*link)->description().find("over TCP"), std::string::npos);
+  CommandClient client(**link);
+  auto r = client.send(mavlink::cmd::kNavLand, {0, 0, 0, 0, 0, 0, 0});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_TRUE(r->accepted());
+  running = false;
+  board.join();
+  o.connect = "tcp:127.0.0.1:" + std::to_string(port);  // the socket still listens, but no board answers any more
+  o.timeout_s = 1;
+  EXPECT_FALSE(VehicleLink::connect(o).ok());
 }
 
 }  // namespace
