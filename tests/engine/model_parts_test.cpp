@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/statistics.h"
 #include "engine/model/atmosphere.h"
 #include "engine/model/ground_contact.h"
 #include "engine/model/motor_model.h"
@@ -14,14 +15,7 @@
 namespace hitl::model {
 namespace {
 
-double sample_sigma(const std::vector<double>& x) {
-  double mean = 0.0;
-  for (double v : x) mean += v;
-  mean /= static_cast<double>(x.size());
-  double var = 0.0;
-  for (double v : x) var += (v - mean) * (v - mean);
-  return std::sqrt(var / static_cast<double>(x.size() - 1));
-}
+using test::sample_sigma;
 
 TEST(Atmosphere, IsaMatchesTheX500Formula) {
   const AtmosphereConfig isa = default_world_config().atmosphere;

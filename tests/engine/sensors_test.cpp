@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/statistics.h"
 #include "engine/frames/frames.h"
 #include "engine/model/atmosphere.h"
 #include "engine/model/x500_defaults.h"
@@ -25,14 +26,7 @@ model::VehicleState at_rest(const Eigen::Quaterniond& q_FLU_to_ENU = Eigen::Quat
 
 model::VehicleConfig noiseless() { return model::with_noise_disabled(model::x500_vehicle_config()); }
 
-double sample_sigma(const std::vector<double>& x) {
-  double mean = 0.0;
-  for (double v : x) mean += v;
-  mean /= static_cast<double>(x.size());
-  double var = 0.0;
-  for (double v : x) var += (v - mean) * (v - mean);
-  return std::sqrt(var / static_cast<double>(x.size() - 1));
-}
+using test::sample_sigma;
 
 TEST(Imu, LevelAtRestReadsMinusGInFrdExactlyWithoutNoise) {
   Imu imu(noiseless().sensors.imu, model::default_world_config(), 1);
