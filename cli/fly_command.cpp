@@ -198,7 +198,7 @@ int run_fly(const GlobalOptions& g, const FlyOptions& o, const std::string& acti
 
 void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   auto o = std::make_shared<FlyOptions>();
-  auto* sub = app.add_subcommand("fly", "Take off, land or hold, and wait for the outcome");
+  auto* sub = app.add_subcommand("fly", "Take off, land, hold or fly a trajectory file, and wait for the outcome");
   sub->require_subcommand(1);
   add_link_options(sub, o->link);
   sub->add_option("--wait", o->wait_s, "Seconds to wait for the outcome")->capture_default_str()->check(CLI::PositiveNumber);
