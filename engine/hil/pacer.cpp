@@ -24,12 +24,6 @@ double to_s(const timespec& t) { return static_cast<double>(t.tv_sec) + static_c
 
 Pacer::Pacer(double period_s, double speed) : wall_period_s_(speed > 0 ? period_s / speed : 0.0), paced_(speed > 0) {}
 
-double Pacer::now_s() {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return to_s(t);
-}
-
 void Pacer::start() {
   clock_gettime(CLOCK_MONOTONIC, &anchor_);
   k_ = 0;
@@ -40,7 +34,9 @@ void Pacer::wait_next() {
   if (!paced_) return;
   ++k_;
   const timespec due = add_s(anchor_, static_cast<double>(k_) * wall_period_s_);
-  const double lateness_s = now_s() - to_s(due);
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  const double lateness_s = to_s(now) - to_s(due);
   if (lateness_s > wall_period_s_) {
     ++stats_.late;
     stats_.max_lateness_s = std::max(stats_.max_lateness_s, lateness_s);

@@ -27,8 +27,6 @@ class Pacer {
   /// Sleeps until the next tick is due (returns at once when behind).
   void wait_next();
   const PacerStats& stats() const { return stats_; }
-  /// Monotonic now, in seconds.
-  static double now_s();
 
  private:
   double wall_period_s_;

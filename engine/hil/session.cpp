@@ -1,5 +1,6 @@
 #include "engine/hil/session.h"
 
+#include "engine/common/clock.h"
 #include <sched.h>
 #include <sys/prctl.h>
 #include <sys/mman.h>
@@ -27,10 +28,6 @@
 
 namespace hitl::hil {
 namespace {
-
-int64_t unix_now_us() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 /// Messages the session itself exchanges with the flight stack; never routed to or from clients.
 bool is_hil_message(uint32_t msgid) {
@@ -102,7 +99,7 @@ struct Session::Impl {
 
   // --- sending -------------------------------------------------------------------------------
   void record(std::span<const uint8_t> bytes) {
-    if (recorder) recorder->write(static_cast<uint64_t>(unix_now_us()), bytes);
+    if (recorder) recorder->write(static_cast<uint64_t>(unix_time_ns() / 1000), bytes);
   }
 
   template <class M>
@@ -203,11 +200,11 @@ struct Session::Impl {
   void lockstep_wait(Observer& observer) {
     if (!lockstep() || !actuators.ever_received()) return;  // PX4 sends nothing during its first ~1.1 s
     ++lockstep_waits;
-    const double deadline = Pacer::now_s() + config.lockstep_timeout_s;
+    const double deadline = monotonic_s() + config.lockstep_timeout_s;
     while (actuators.take_new() == 0 && !stack_gone) {
-      const double left_s = deadline - Pacer::now_s();
+      const double left_s = deadline - monotonic_s();
       if (left_s <= 0 || !wait_stack_readable(static_cast<int>(std::ceil(left_s * 1000)))) {
-        if (Pacer::now_s() < deadline) continue;
+        if (monotonic_s() < deadline) continue;
         ++lockstep_fallbacks;
         if (!warned_lockstep) {
           warned_lockstep = true;
@@ -217,22 +214,22 @@ struct Session::Impl {
         }
         return;
       }
-      drain(Pacer::now_s());
+      drain(monotonic_s());
     }
   }
 
   Status step(Observer& observer) {
-    const double now_s = Pacer::now_s();
+    const double now_s = monotonic_s();
     drain(now_s);
     lockstep_wait(observer);
-    model->set_motor_commands(actuators.commands(Pacer::now_s()));
+    model->set_motor_commands(actuators.commands(monotonic_s()));
     if (auto st = model->step(); !st) return st;
     const auto& state = model->state();
     const auto frame = sensors->sample_due(state);
     const uint64_t t_us = mavlink::wire::s_to_us(state.time_s);
     if (frame.imu || frame.mag || frame.baro) {
       send_to_stack(make_hil_sensor(frame, t_us));
-      if (first_sensor_wall_s < 0) first_sensor_wall_s = Pacer::now_s();
+      if (first_sensor_wall_s < 0) first_sensor_wall_s = monotonic_s();
     }
     if (frame.gps) send_to_stack(make_hil_gps(*frame.gps, t_us));
     if (pilot) fly_pilot(state, observer);
@@ -253,7 +250,7 @@ struct Session::Impl {
       send_to_vio(make_odometry(frame.truth, t_us));
     }
     if (!warned_no_answer && first_sensor_wall_s >= 0 && !actuators.ever_received() &&
-        Pacer::now_s() - first_sensor_wall_s > config.no_answer_warning_s) {
+        monotonic_s() - first_sensor_wall_s > config.no_answer_warning_s) {
       warned_no_answer = true;
       observer.on_event({Severity::Warning, no_answer_text()});
     }
@@ -290,7 +287,7 @@ struct Session::Impl {
     SessionSnapshot s;
     const auto& st = model->state();
     s.sim_time_s = st.time_s;
-    s.wall_time_s = Pacer::now_s() - start_wall_s;
+    s.wall_time_s = monotonic_s() - start_wall_s;
     s.real_time_factor = s.wall_time_s > 0 ? s.sim_time_s / s.wall_time_s : 0;
     s.recent_real_time_factor = recent_rtf;
     for (const auto& [id, c] : sent) s.sent[name_of(id)] = StreamCount{c.count, c.rate_hz};
@@ -339,7 +336,7 @@ struct Session::Impl {
   }
 
   void roll_window() {
-    const double now = Pacer::now_s();
+    const double now = monotonic_s();
     const double dt = now - window_start_wall_s;
     if (dt <= 0) return;
     for (auto* m : {&sent, &received})
@@ -475,7 +472,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
   }
   // The default 50 us timer slack would show up as jitter in every HIL_SENSOR interval.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
-  s.start_wall_s = Pacer::now_s();
+  s.start_wall_s = monotonic_s();
   s.window_start_wall_s = s.start_wall_s;
   s.pacer->start();
   double next_status_s = s.start_wall_s + 1.0;
@@ -501,7 +498,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       reason = EndReason::FlightStackGone;
       break;
     }
-    const double now = Pacer::now_s();
+    const double now = monotonic_s();
     if (now >= next_publish_s) {
       next_publish_s = now + 0.1;
       s.publish();

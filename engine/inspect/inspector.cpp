@@ -1,5 +1,6 @@
 #include "engine/inspect/inspector.h"
 
+#include "engine/common/clock.h"
 #include <algorithm>
 #include <chrono>
 
@@ -11,10 +12,6 @@ namespace hitl::inspect {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-int64_t wall_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 }  // namespace
 
@@ -100,7 +97,7 @@ Expected<Inspector::EndReason> Inspector::run(const std::atomic<bool>& stop, Obs
 }
 
 Expected<Inspector::EndReason> Inspector::run_live(const std::atomic<bool>& stop, Observer& observer) {
-  now_ns_ = wall_now_ns();
+  now_ns_ = unix_time_ns();
   stats_.restart(now_ns_);
   const auto start = Clock::now();
   auto next_tick = start + std::chrono::seconds(1);
@@ -122,7 +119,7 @@ Expected<Inspector::EndReason> Inspector::run_live(const std::atomic<bool>& stop
         if (counted_out()) break;
       }
     }
-    now_ns_ = wall_now_ns();
+    now_ns_ = unix_time_ns();
     if (counted_out()) return EndReason::Count;
     const auto after = Clock::now();
     if (after >= deadline) return EndReason::Duration;
@@ -133,7 +130,7 @@ Expected<Inspector::EndReason> Inspector::run_live(const std::atomic<bool>& stop
       observer.on_tick(summary());
     }
   }
-  now_ns_ = wall_now_ns();
+  now_ns_ = unix_time_ns();
   return EndReason::Stopped;
 }
 

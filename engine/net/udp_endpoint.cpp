@@ -1,5 +1,6 @@
 #include "engine/net/udp_endpoint.h"
 
+#include "engine/common/clock.h"
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -21,10 +22,6 @@ std::string bind_hint(int err, const std::string& where) {
     case EACCES: return "permission denied (ports below 1024 need privileges)";
     default: return std::strerror(err);
   }
-}
-
-int64_t realtime_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
@@ -134,7 +131,7 @@ std::optional<Datagram> UdpEndpoint::receive() {
         d.rx_time_unix_ns = int64_t{ts.tv_sec} * 1000000000 + ts.tv_nsec;
       }
     }
-    if (d.rx_time_unix_ns == 0) d.rx_time_unix_ns = realtime_now_ns();
+    if (d.rx_time_unix_ns == 0) d.rx_time_unix_ns = unix_time_ns();
     ++stats_.datagrams_in;
     stats_.bytes_in += static_cast<uint64_t>(n);
     learn(d.from);

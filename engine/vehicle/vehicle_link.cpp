@@ -1,5 +1,6 @@
 #include "engine/vehicle/vehicle_link.h"
 
+#include "engine/common/clock.h"
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -12,10 +13,6 @@
 
 namespace hitl::vehicle {
 namespace {
-
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 Expected<net::UdpEndpoint> open_endpoint(const std::string& bind, uint16_t port, std::optional<net::SocketAddress> peer,
                                          net::PartnerPolicy policy, const std::string& name) {
@@ -60,7 +57,7 @@ VehicleLink::VehicleLink(std::optional<net::UdpEndpoint> udp, std::optional<net:
 
 void VehicleLink::heartbeat() {
   send(mavlink::gcs_heartbeat());
-  last_heartbeat_s_ = now_s();
+  last_heartbeat_s_ = monotonic_s();
 }
 
 void VehicleLink::send_bytes(std::span<const uint8_t> bytes) {
@@ -72,7 +69,7 @@ void VehicleLink::send_bytes(std::span<const uint8_t> bytes) {
 }
 
 bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
-  const double end = now_s() + timeout_s;
+  const double end = monotonic_s() + timeout_s;
   bool done = false;
   auto on_frame = [&](const mavlink::Frame& f) {
     if (done || f.desc == nullptr) return;
@@ -81,8 +78,8 @@ bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
   };
   for (;;) {
     if (closed_) return false;
-    if (now_s() - last_heartbeat_s_ >= 1.0) heartbeat();
-    const double left = end - now_s();
+    if (monotonic_s() - last_heartbeat_s_ >= 1.0) heartbeat();
+    const double left = end - monotonic_s();
     if (left <= 0) return false;
     const int wait_ms = static_cast<int>(std::min(left, 0.2) * 1000) + 1;
     if (tcp_) {

@@ -1,5 +1,6 @@
 #include "target/emulator/board.h"
 
+#include "engine/common/clock.h"
 #include <poll.h>
 
 #include <chrono>
@@ -27,11 +28,6 @@ namespace {
 
 namespace msg = mavlink::msg;
 using mavlink::MavResult;
-
-uint64_t monotonic_us() {
-  return static_cast<uint64_t>(
-      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch()).count());
-}
 
 constexpr int64_t hz(double rate) { return static_cast<int64_t>(1e6 / rate); }
 
@@ -70,14 +66,12 @@ struct Board::Impl {
 
   uint64_t start_us = 0;
   uint64_t now_us = 0;        ///< board time since start
-  uint64_t next_actuator_us = 0;
   bool sensor_time_started = false;
   uint64_t sensor_time_origin_us = 0;
   uint64_t sensor_time_base_us = 0;
   uint64_t hil_sensor_received = 0, hil_gps_received = 0, odometry_received = 0, actuators_sent = 0;
   uint64_t commands_received = 0, params_set = 0;
   std::array<double, 4> motors{};
-  uint16_t boot_message_countdown = 1;
 
   mutable std::mutex snapshot_mutex;
   BoardSnapshot published;
