@@ -8,6 +8,7 @@
 #include "engine/mavlink/frame_encoder.h"
 #include "engine/mavlink/messages.h"
 #include "engine/mavlink/tlog.h"
+#include "tests/support/json_lines.h"
 #include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
 
@@ -24,16 +25,9 @@ std::vector<std::string> args(std::initializer_list<std::string> a) {
 }
 
 nlohmann::json last_json(Process& p) {
-  auto lines = p.out_lines();
-  EXPECT_FALSE(lines.empty()) << "no output; stderr: " << p.err();
-  if (lines.empty()) return {};
-  return nlohmann::json::parse(lines.back());
-}
-
-nlohmann::json last_line_json(const std::string& out) {
-  const auto end = out.find_last_not_of('\n');
-  const auto start = out.rfind('\n', end);
-  return nlohmann::json::parse(out.substr(start == std::string::npos ? 0 : start + 1));
+  const auto out = p.out();
+  EXPECT_FALSE(out.empty()) << "no output; stderr: " << p.err();
+  return test::last_json_line(out);
 }
 
 mavlink::msg::Odometry odometry(uint64_t t) {
@@ -158,7 +152,7 @@ TEST(InspectE2E, RecordThenReadTheTlogBack) {
 
   auto r = test::run_hitl({"--json", "inspect", "--tlog", dir + "/rec.tlog"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  const auto j = last_line_json(r.out);
+  const auto j = test::last_json_line(r.out);
   EXPECT_EQ(j["end"], "end_of_log");
   EXPECT_EQ(j["messages"]["ODOMETRY"]["count"], 50);
   EXPECT_NEAR(j["messages"]["ODOMETRY"]["rate_hz"].get<double>(), 200.0, 20.0);
@@ -177,13 +171,13 @@ TEST(InspectE2E, TlogRatesComeFromTheLogsTimestamps) {
   }
   auto r = test::run_hitl({"inspect", "--tlog", path, "--json", "--expect", "ODOMETRY=250", "--tolerance", "0.1"});
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
-  const auto j = last_line_json(r.out);
+  const auto j = test::last_json_line(r.out);
   EXPECT_NEAR(j["duration_s"].get<double>(), 4.0, 1e-6);
   EXPECT_NEAR(j["messages"]["ODOMETRY"]["rate_hz"].get<double>(), 250.0, 1e-6);
   EXPECT_NEAR(j["messages"]["ODOMETRY"]["gap_us"]["std"].get<double>(), 0.0, 1e-6);
   // --duration on a log counts log time.
   auto part = test::run_hitl({"inspect", "--tlog", path, "--json", "--duration", "1"});
-  EXPECT_EQ(last_line_json(part.out)["messages"]["ODOMETRY"]["count"], 251);
+  EXPECT_EQ(test::last_json_line(part.out)["messages"]["ODOMETRY"]["count"], 251);
 }
 
 TEST(InspectE2E, ShowFollowPrintsDecodedFieldsAndNamesHilSensorBits) {

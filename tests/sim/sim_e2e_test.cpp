@@ -20,6 +20,7 @@
 #include "engine/mavlink/hil_sensor_fields.h"
 #include "engine/mavlink/messages.h"
 #include "engine/model/x500_defaults.h"
+#include "tests/support/json_lines.h"
 #include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
 
@@ -32,12 +33,7 @@ using test::Process;
 
 const double kHover = model::hover_command(model::x500_vehicle_config(), model::default_world_config());
 
-nlohmann::json last_json(const std::string& out) {
-  const auto end = out.find_last_not_of('\n');
-  if (end == std::string::npos) return {};
-  const auto start = out.rfind('\n', end);
-  return nlohmann::json::parse(out.substr(start == std::string::npos ? 0 : start + 1));
-}
+nlohmann::json last_json(const std::string& out) { return test::last_json_line(out); }
 
 msg::HilActuatorControls actuators(double u, bool armed) {
   msg::HilActuatorControls a;
