@@ -6,7 +6,6 @@
 
 namespace hitl::flight {
 namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 Eigen::Quaterniond canonical(const Eigen::Quaterniond& q) {
   return q.w() < 0.0 ? Eigen::Quaterniond(-q.w(), -q.x(), -q.y(), -q.z()) : q;

@@ -8,7 +8,6 @@
 namespace hitl::flight {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kAlignTime_s = 4.0;          // fast-gain levelling and gyro bias settle in ~4 s
 constexpr double kGpsChecksBeforeOrigin_s = 1.0;
 constexpr double kGpsPosResetAfter_s = 5.0;   // continuous rejection -> reset to GPS

@@ -178,6 +178,7 @@ void FlightCore::enter_mode(FlightMode mode) {
   hold_NED_m_ = e.p_NED_m;
   switch (mode) {
     case FlightMode::Position: manual_.reset(e.p_NED_m, yaw_sp_rad_); break;
+    case FlightMode::Stabilized: manual_attitude_.reset(e.yaw_rad); break;
     case FlightMode::Hold:
       if (landed_state_ == LandedState::InAir) {
         // Brake: hold where the vehicle would stop at its current speed.
@@ -231,6 +232,7 @@ PositionSetpoint FlightCore::setpoint_for_mode(double dt_s) {
       yaw_sp_rad_ = sp.yaw_rad;
       break;
     }
+    case FlightMode::Stabilized: break;  // no position setpoint: see step()
   }
   return sp;
 }
@@ -242,12 +244,17 @@ void FlightCore::idle_outputs() {
 
 void FlightCore::run_controllers(const PositionSetpoint& sp, double dt_s) {
   const Estimate& e = estimator_.estimate();
-  const QuadGeometry geometry = geometry_from(params_);
-  if (!mixer_ || mixer_->geometry() != geometry) mixer_.emplace(geometry);
-
   VehicleKinematics k{e.p_NED_m, e.v_NED_m_s, e.a_NED_m_s2};
   const PositionControlOutput pos = position_control_.update(sp, k, params_, dt_s, thrust_limit_);
-  const Eigen::Vector3d rate_sp = attitude_control(e.q_FRD_to_NED, pos.q_sp_FRD_to_NED, sp.yawspeed_rad_s, params_);
+  control_.position = sp;
+  run_attitude_rate(pos, sp.yawspeed_rad_s, dt_s);
+}
+
+void FlightCore::run_attitude_rate(const PositionControlOutput& pos, double yawspeed_rad_s, double dt_s) {
+  const Estimate& e = estimator_.estimate();
+  const QuadGeometry geometry = geometry_from(params_);
+  if (!mixer_ || mixer_->geometry() != geometry) mixer_.emplace(geometry);
+  const Eigen::Vector3d rate_sp = attitude_control(e.q_FRD_to_NED, pos.q_sp_FRD_to_NED, yawspeed_rad_s, params_);
 
   const double alpha = dt_s / (dt_s + 1.0 / (2.0 * std::numbers::pi * kDgyroCutoff_hz));
   angular_accel_FRD_rad_s2_ += alpha * ((e.w_FRD_rad_s - last_rate_FRD_rad_s_) / dt_s - angular_accel_FRD_rad_s2_);
@@ -259,7 +266,6 @@ void FlightCore::run_controllers(const PositionSetpoint& sp, double dt_s) {
   for (std::size_t i = 0; i < 4; ++i) {
     actuators_.u[i] = std::clamp(std::max(last_mix_.u[i], static_cast<double>(params_.HITL_MOT_IDLE)), 0.0, 1.0);
   }
-  control_.position = sp;
   control_.position_out = pos;
   control_.rate_sp_FRD_rad_s = rate_sp;
   control_.torque_FRD = torque;
@@ -291,11 +297,19 @@ void FlightCore::step(std::uint64_t now_us) {
     say(severity::kInfo, "Pilot took over position control using sticks");
   }
 
+  // Stabilized without sticks has nothing to fly by: hold position instead (PX4's RC-loss failsafe).
+  if (mode_ == FlightMode::Stabilized && landed_state_ != LandedState::OnGround && !sticks_fresh()) {
+    enter_mode(FlightMode::Hold);
+    say(severity::kWarning, "Manual control lost: switching to Hold");
+  }
+
   if (landed_state_ == LandedState::OnGround) {
-    // Position mode: throttle up lifts off.
-    if (mode_ == FlightMode::Position && ManualPositionSetpoint::wants_climb(current_sticks(), params_)) {
+    // Position and Stabilized: throttle up lifts off.
+    const bool manual_mode = mode_ == FlightMode::Position || mode_ == FlightMode::Stabilized;
+    if (manual_mode && ManualPositionSetpoint::wants_climb(current_sticks(), params_)) {
       reset_controllers();
       manual_.reset(e.p_NED_m, e.yaw_rad);
+      manual_attitude_.reset(e.yaw_rad);
       landed_state_ = LandedState::InAir;
       flown_since_arming_ = true;
       say(severity::kInfo, "Takeoff detected");
@@ -314,8 +328,18 @@ void FlightCore::step(std::uint64_t now_us) {
     }
   }
 
-  const PositionSetpoint sp = setpoint_for_mode(dt_s);
-  run_controllers(sp, dt_s);
+  if (mode_ == FlightMode::Stabilized) {
+    const AttitudeSetpoint att = manual_attitude_.update(current_sticks(), params_, dt_s);
+    yaw_sp_rad_ = manual_attitude_.yaw_sp_rad();
+    PositionControlOutput pos;
+    pos.q_sp_FRD_to_NED = att.q_sp_FRD_to_NED;
+    pos.collective_thrust = std::isnan(thrust_limit_) ? att.collective_thrust : std::min(att.collective_thrust, thrust_limit_);
+    pos.thrust_NED = att.q_sp_FRD_to_NED * Eigen::Vector3d(0.0, 0.0, -pos.collective_thrust);
+    control_.position = PositionSetpoint{};
+    run_attitude_rate(pos, att.yawspeed_rad_s, dt_s);
+  } else {
+    run_controllers(setpoint_for_mode(dt_s), dt_s);
+  }
 
   // Touchdown: in the air or landing, never while taking off.
   if (landed_state_ == LandedState::InAir || landed_state_ == LandedState::Landing) {

@@ -20,6 +20,7 @@
 #include "target/emulator/flight/flight_params.h"
 #include "target/emulator/flight/inputs.h"
 #include "target/emulator/flight/land_detector.h"
+#include "target/emulator/flight/manual_attitude.h"
 #include "target/emulator/flight/manual_setpoint.h"
 #include "target/emulator/flight/mixer.h"
 #include "target/emulator/flight/position_control.h"
@@ -133,6 +134,7 @@ class FlightCore {
   bool sticks_deflected_for_override() const;
   PositionSetpoint setpoint_for_mode(double dt_s);
   void run_controllers(const PositionSetpoint& sp, double dt_s);
+  void run_attitude_rate(const PositionControlOutput& pos, double yawspeed_rad_s, double dt_s);
   void idle_outputs();
 
   FlightParams params_;
@@ -142,6 +144,7 @@ class FlightCore {
   RateControl rate_control_;
   LandDetector land_detector_;
   ManualPositionSetpoint manual_;
+  ManualAttitudeSetpoint manual_attitude_;
 
   std::uint64_t now_us_ = 0;
   bool stepped_ = false;

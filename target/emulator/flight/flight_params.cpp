@@ -30,6 +30,8 @@ constexpr std::array kTable{
     ParamInfo{"MPC_ACC_UP_MAX", ParamType::Float, 4.0, 1, 15, "m/s^2", &FlightParams::MPC_ACC_UP_MAX, nullptr},
     ParamInfo{"MPC_HOLD_DZ", ParamType::Float, 0.1, 0, 1, "", &FlightParams::MPC_HOLD_DZ, nullptr},
     ParamInfo{"MPC_MAN_Y_MAX", ParamType::Float, 150.0, 0, 400, "deg/s", &FlightParams::MPC_MAN_Y_MAX, nullptr},
+    ParamInfo{"MPC_MAN_TILT_MAX", ParamType::Float, 35.0, 0, 90, "deg", &FlightParams::MPC_MAN_TILT_MAX, nullptr},
+    ParamInfo{"MPC_MANTHR_MIN", ParamType::Float, 0.08, 0, 1, "", &FlightParams::MPC_MANTHR_MIN, nullptr},
     ParamInfo{"MPC_LAND_SPEED", ParamType::Float, 0.7, 0.3, 4, "m/s", &FlightParams::MPC_LAND_SPEED, nullptr},
     ParamInfo{"MPC_TKO_SPEED", ParamType::Float, 1.5, 0.5, 5, "m/s", &FlightParams::MPC_TKO_SPEED, nullptr},
     ParamInfo{"MIS_TAKEOFF_ALT", ParamType::Float, 2.5, 0, 80, "m", &FlightParams::MIS_TAKEOFF_ALT, nullptr},

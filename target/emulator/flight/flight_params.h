@@ -5,12 +5,16 @@
 #pragma once
 
 #include <cstdint>
+#include <numbers>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 
 namespace hitl::flight {
+
+/// Angles in the parameters are in degrees (as PX4's); the controllers work in radians.
+inline constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 struct FlightParams {
   // Position controller (mc_pos_control)
@@ -35,6 +39,8 @@ struct FlightParams {
   float MPC_ACC_UP_MAX = 4.0f;      ///< m/s^2, stick vertical velocity slew
   float MPC_HOLD_DZ = 0.1f;         ///< stick deadzone
   float MPC_MAN_Y_MAX = 150.0f;     ///< deg/s, full yaw stick
+  float MPC_MAN_TILT_MAX = 35.0f;   ///< deg, full roll/pitch stick in Stabilized
+  float MPC_MANTHR_MIN = 0.08f;     ///< Stabilized thrust at zero throttle
   float MPC_LAND_SPEED = 0.7f;      ///< m/s
   float MPC_TKO_SPEED = 1.5f;       ///< m/s
   float MIS_TAKEOFF_ALT = 2.5f;     ///< m above home

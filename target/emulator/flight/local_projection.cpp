@@ -1,14 +1,12 @@
 #include "target/emulator/flight/local_projection.h"
 
+#include "target/emulator/flight/flight_params.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 namespace hitl::flight {
-namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-}
-
 LocalProjection::LocalProjection(double lat0_deg, double lon0_deg)
     : valid_(true), lat0_deg_(lat0_deg), lon0_deg_(lon0_deg),
       sin_lat0_(std::sin(lat0_deg * kDegToRad)), cos_lat0_(std::cos(lat0_deg * kDegToRad)) {}

@@ -8,7 +8,6 @@
 
 namespace hitl::flight {
 namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kLockSpeed_m_s = 0.3;  // lock the position once braked below this
 }  // namespace
 

@@ -9,7 +9,6 @@
 namespace hitl::flight {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 /// Limits the angle between unit vectors body_z and world_z (PX4 ControlMath::limitTilt).
 Eigen::Vector3d limit_tilt(const Eigen::Vector3d& body_z, double max_angle_rad) {

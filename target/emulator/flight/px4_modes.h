@@ -2,7 +2,7 @@
 //   HEARTBEAT.custom_mode = main_mode << 16 | sub_mode << 24
 //   main: MANUAL 1, ALTCTL 2, POSCTL 3, AUTO 4, ACRO 5, OFFBOARD 6, STABILIZED 7
 //   AUTO sub: READY 1, TAKEOFF 2, LOITER 3, MISSION 4, RTL 5, LAND 6
-// Position = POSCTL (0x00030000), Hold = AUTO.LOITER (0x03040000), Takeoff = AUTO.TAKEOFF
+// Stabilized = STABILIZED (0x00070000), Position = POSCTL (0x00030000), Hold = AUTO.LOITER (0x03040000), Takeoff = AUTO.TAKEOFF
 // (0x02040000), Land = AUTO.LAND (0x06040000).
 #pragma once
 
@@ -26,7 +26,7 @@ inline constexpr std::uint8_t kCustomModeEnabled = 1, kTestEnabled = 2, kAutoEna
                               kSafetyArmed = 128;
 }
 
-enum class FlightMode { Position, Hold, Takeoff, Land };
+enum class FlightMode { Position, Hold, Takeoff, Land, Stabilized };
 
 /// MAV_LANDED_STATE.
 enum class LandedState : std::uint8_t { Undefined = 0, OnGround = 1, InAir = 2, Takeoff = 3, Landing = 4 };
@@ -36,7 +36,7 @@ std::uint32_t px4_custom_mode(FlightMode mode);
 std::optional<FlightMode> flight_mode_from_px4(std::uint32_t custom_mode);
 /// HEARTBEAT.base_mode as PX4 fills it (custom mode enabled, mode-class bits, armed).
 std::uint8_t mav_base_mode(FlightMode mode, bool armed);
-/// PX4's names: "Position", "Hold", "Takeoff", "Land".
+/// PX4's names: "Position", "Hold", "Takeoff", "Land", "Stabilized".
 std::string to_string(FlightMode mode);
 std::string to_string(LandedState state);
 
