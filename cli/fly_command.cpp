@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "engine/hil/session_config.h"
 #include "engine/mavlink/enums.h"
 #include "engine/vehicle/command_client.h"
 #include "engine/vehicle/param_client.h"
@@ -24,6 +26,7 @@ struct FlyOptions {
   double wait_s = 60;           ///< how long to wait for the outcome
   std::string trajectory_file;
   double rc_rate_hz = 20;
+  vehicle::StickMode mode = vehicle::StickMode::Velocity;
 };
 
 // PX4 custom_mode of Hold: AUTO (4) << 16 | LOITER (3) << 24.
@@ -50,12 +53,30 @@ int fly_trajectory(const GlobalOptions& g, const FlyOptions& o, vehicle::Vehicle
   }
   vehicle::PilotConfig pc;
   pc.rc_rate_hz = o.rc_rate_hz;
+  pc.mode = o.mode;
   pc.target_system = link.target_sysid();
   pc.target_component = link.target_compid();
+  if (o.mode == vehicle::StickMode::Attitude) {  // the board's own Stabilized stick scaling
+    vehicle::ParamClient params(link);
+    const std::pair<const char*, double*> wanted[] = {{"MPC_MAN_TILT_MAX", &pc.max_tilt_rad}, {"MPC_THR_HOVER", &pc.thr_hover},
+                                                      {"MPC_MANTHR_MIN", &pc.thr_min}, {"MPC_THR_MAX", &pc.thr_max}};
+    for (const auto& [name, value] : wanted) {
+      if (auto p = params.get(name)) *value = std::string(name) == "MPC_MAN_TILT_MAX" ? p->as_double() * M_PI / 180.0 : p->as_double();
+      else log_info(g, std::string("hitl fly: could not read ") + name + " (" + p.error().message + "); assuming PX4's default");
+    }
+  }
   std::optional<double> home_amsl_m;
   std::optional<std::array<double, 3>> origin_NED_m;
-  std::array<double, 3> p_NED_m{};
+  std::array<double, 3> p_NED_m{}, v_NED_m_s{};
   double yaw_NED_rad = 0, t_s = 0;
+  // Through a session, the simulator's ground truth (ODOMETRY from its own system id, type MOCAP).
+  std::optional<std::array<double, 3>> truth_NED_m, truth_origin_NED_m;
+  link.on_other_systems([&](const mavlink::Frame& f) {
+    if (f.sysid != hil::kSimulatorSystemId || !f.is<msg::Odometry>()) return;
+    const auto odo = f.as<msg::Odometry>();
+    if (odo.estimator_type != static_cast<uint8_t>(mavlink::MavEstimatorType::Mocap)) return;
+    truth_NED_m = std::array<double, 3>{odo.x, odo.y, odo.z};
+  });
   bool have_yaw = false;
   nlohmann::json trace = nlohmann::json::array();
   std::optional<vehicle::TrajectoryPilot> pilot;
@@ -70,6 +91,7 @@ int fly_trajectory(const GlobalOptions& g, const FlyOptions& o, vehicle::Vehicle
     } else if (f.is<msg::LocalPositionNed>()) {
       const auto l = f.as<msg::LocalPositionNed>();
       p_NED_m = {l.x, l.y, l.z};
+      v_NED_m_s = {l.vx, l.vy, l.vz};
       if (!origin_NED_m) origin_NED_m = p_NED_m;
       t_s = l.time_boot_ms / 1000.0;
     }
@@ -91,25 +113,49 @@ int fly_trajectory(const GlobalOptions& g, const FlyOptions& o, vehicle::Vehicle
     vehicle::PilotPose pose;
     // NED -> ENU relative to where the vehicle was at the start; yaw: ENU = pi/2 - NED heading.
     pose.p_ENU_m = {p_NED_m[1] - (*origin_NED_m)[1], p_NED_m[0] - (*origin_NED_m)[0], -(p_NED_m[2] - (*origin_NED_m)[2])};
+    pose.v_ENU_m_s = {v_NED_m_s[1], v_NED_m_s[0], -v_NED_m_s[2]};
     pose.yaw_ENU_rad = vehicle::wrap_pi(M_PI / 2 - yaw_NED_rad);
+    const auto state = pilot->state();
+    if (truth_NED_m && !truth_origin_NED_m && (state == vehicle::PilotState::Init || state == vehicle::PilotState::Arm))
+      truth_origin_NED_m = truth_NED_m;  // at rest, where the estimate's origin was taken
+    std::optional<vehicle::PilotPose> truth;
+    if (truth_NED_m && truth_origin_NED_m) {
+      const auto& t = *truth_NED_m;
+      const auto& t0 = *truth_origin_NED_m;
+      truth.emplace();
+      truth->p_ENU_m = {t[1] - t0[1], t[0] - t0[0], -(t[2] - t0[2])};
+      pilot->observe_truth(t_s - start_s, *truth);
+    }
     auto out = pilot->step(t_s - start_s, pose);
     for (const auto& c : out.commands) link.send(c);
     if (out.rc) link.send(*out.rc);
     if (out.event && !g.quiet) std::cerr << "hitl fly: " << *out.event << '\n';
-    if (pilot->state() == vehicle::PilotState::Trajectory && g.json)
-      trace.push_back({{"t_s", t_s - start_s}, {"p_enu_m", pose.p_ENU_m}});
+    if (pilot->state() == vehicle::PilotState::Trajectory && g.json) {
+      nlohmann::json row = {{"t_s", t_s - start_s}, {"p_enu_m", pose.p_ENU_m}};
+      if (truth) row["truth_p_enu_m"] = truth->p_ENU_m;
+      trace.push_back(std::move(row));
+    }
     if (pilot->state() != last_state) last_state = pilot->state();
   }
   const auto track = pilot->tracking();
-  char text[200];
-  std::snprintf(text, sizeof text, "%s%s; tracking error (board's estimate) RMS %.2f m, max %.2f m",
-                vehicle::to_string(pilot->state()), pilot->failure().empty() ? "" : (": " + pilot->failure()).c_str(),
-                track.rms_m, track.max_m);
+  const auto truth_track = pilot->truth_tracking();
+  char text[300];
+  int n = std::snprintf(text, sizeof text, "%s%s; %s mode; tracking error (board's estimate) RMS %.2f m, max %.2f m",
+                        vehicle::to_string(pilot->state()), pilot->failure().empty() ? "" : (": " + pilot->failure()).c_str(),
+                        vehicle::to_string(o.mode), track.rms_m, track.max_m);
+  if (truth_track.samples > 0 && n > 0 && static_cast<std::size_t>(n) < sizeof text)
+    std::snprintf(text + n, sizeof text - n, "; against the simulator's truth RMS %.2f m, max %.2f m", truth_track.rms_m,
+                  truth_track.max_m);
+  const auto or_null = [&](double v) { return truth_track.samples > 0 ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return finish(g, "trajectory", pilot->state() == vehicle::PilotState::Done, text,
                 {{"state", vehicle::to_string(pilot->state())},
+                 {"mode", vehicle::to_string(o.mode)},
                  {"rms_m", track.rms_m},
                  {"max_m", track.max_m},
                  {"samples", track.samples},
+                 {"truth_rms_m", or_null(truth_track.rms_m)},
+                 {"truth_max_m", or_null(truth_track.max_m)},
+                 {"truth_samples", truth_track.samples},
                  {"trace", trace}});
 }
 
@@ -218,6 +264,12 @@ void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   traj->add_option("FILE", o->trajectory_file, "Waypoints {t, x, y, z, yaw} in ENU metres/radians")->required()
       ->check(CLI::ExistingFile);
   traj->add_option("--rate", o->rc_rate_hz, "RC_CHANNELS_OVERRIDE rate, Hz")->capture_default_str()->check(CLI::Range(2.0, 100.0));
+  traj->add_option("--mode", o->mode,
+                   "velocity: Position mode, sticks are velocities; attitude: Stabilized, sticks are tilt and thrust "
+                   "(the pilot closes position and velocity itself)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
+                                                                                  {"attitude", vehicle::StickMode::Attitude}}))
+      ->default_str("velocity");
 }
 
 }  // namespace hitl::cli

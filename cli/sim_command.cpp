@@ -2,6 +2,7 @@
 // Gazebo + mavlink_hitl_gazebosim + hitl-gz-start.sh).
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include <unistd.h>
@@ -316,12 +317,21 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                   "Fly this trajectory file (the spec's trajectory_rc: arm, take off, follow the waypoints by stick, "
                   "hold, land) and end the session; the summary gives the tracking error against ground truth")
       ->check(CLI::ExistingFile)->type_name("FILE.json")->group(model);
+  sub->add_option("--trajectory-mode", c.trajectory_mode,
+                  "-t's sticks: velocity (Position mode) or attitude (Stabilized: tilt and thrust)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
+                                                                                  {"attitude", vehicle::StickMode::Attitude}}))
+      ->default_str("velocity")->group(model);
 
   const char* route = "Clients and recording";
   sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local MAVLink clients (other hitl commands); 0: none")
       ->capture_default_str()->check(CLI::Range(0, 65535))->group(route);
   sub->add_option("--gcs", c.gcs, "Also route the board's telemetry to a ground station (QGroundControl: 127.0.0.1:14550)")
       ->type_name("HOST:PORT")->group(route);
+  sub->add_option("--truth-rate", c.truth_rate_hz,
+                  "Ground truth to clients as ODOMETRY (sysid " + std::to_string(hil::kSimulatorSystemId) +
+                      ", estimator MOCAP), Hz; 0: none")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(route);
   sub->add_option("--record", c.record_path, "Save everything sent and received to a .tlog")->type_name("FILE.tlog")->group(route);
   sub->callback([&options, &state, opt, px4_sitl]() {
     opt->px4_sitl_given = px4_sitl->count() > 0;  // also when given bare: `--px4-sitl` means tcp:4560

@@ -3,15 +3,13 @@
 #include <array>
 #include <cmath>
 
+#include "engine/mavlink/enums.h"
 #include "engine/mavlink/hil_sensor_fields.h"
 #include "engine/mavlink/wire_units.h"
 
 namespace hitl::hil {
 namespace {
 
-constexpr uint8_t kMavFrameLocalNed = 1;
-constexpr uint8_t kMavFrameBodyFrd = 12;
-constexpr uint8_t kMavEstimatorTypeVio = 3;
 constexpr float kGravity_m_s2 = 9.80665f;
 
 /// A quaternion as MAVLink carries it: w, x, y, z.
@@ -78,8 +76,8 @@ mavlink::msg::HilGps make_hil_gps(const sensors::GpsSample& gps, uint64_t time_u
 mavlink::msg::Odometry make_odometry(const sensors::GroundTruth& truth, uint64_t time_usec) {
   mavlink::msg::Odometry m;
   m.time_usec = time_usec;
-  m.frame_id = kMavFrameLocalNed;
-  m.child_frame_id = kMavFrameBodyFrd;
+  m.frame_id = static_cast<uint8_t>(mavlink::MavFrame::LocalNed);
+  m.child_frame_id = static_cast<uint8_t>(mavlink::MavFrame::BodyFrd);
   m.x = static_cast<float>(truth.p_NED_m.x());
   m.y = static_cast<float>(truth.p_NED_m.y());
   m.z = static_cast<float>(truth.p_NED_m.z());
@@ -97,7 +95,7 @@ mavlink::msg::Odometry make_odometry(const sensors::GroundTruth& truth, uint64_t
     m.velocity_covariance[kCovarianceDiagonal[i + 3]] = kOdometryAttitudeVariance_rad2;
   }
   m.reset_counter = 0;
-  m.estimator_type = kMavEstimatorTypeVio;
+  m.estimator_type = static_cast<uint8_t>(mavlink::MavEstimatorType::Vio);
   m.quality = 100;
   return m;
 }

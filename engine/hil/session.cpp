@@ -50,6 +50,7 @@ struct Session::Impl {
   std::optional<sensors::SensorSuite> sensors;
   mavlink::FrameEncoder encoder{kSimulatorSystemId, kSimulatorComponentId};      ///< the HIL link's sequence
   mavlink::FrameEncoder vio_encoder{kSimulatorSystemId, kVioComponentId};  ///< the VIO link's own sequence
+  mavlink::FrameEncoder truth_encoder{kSimulatorSystemId, kSimulatorComponentId};  ///< truth to clients
   std::optional<mavlink::FrameParser> stack_parser;
   std::optional<mavlink::FrameParser> client_parser;
 
@@ -76,6 +77,8 @@ struct Session::Impl {
   uint64_t routed_to_clients = 0;
   double next_vio_s = 0;
   uint64_t vio_k = 0;
+  double next_truth_s = 0;
+  uint64_t truth_k = 0;
   double next_heartbeat_s = 0;
   double start_wall_s = 0;
   double first_sensor_wall_s = -1;
@@ -249,6 +252,14 @@ struct Session::Impl {
       next_vio_s = static_cast<double>(vio_k) / config.vio_rate_hz;
       send_to_vio(make_odometry(frame.truth, t_us));
     }
+    if (clients && config.truth_rate_hz > 0 && state.time_s + 1e-9 >= next_truth_s) {
+      ++truth_k;
+      next_truth_s = static_cast<double>(truth_k) / config.truth_rate_hz;
+      auto odometry = make_odometry(frame.truth, t_us);
+      odometry.estimator_type = static_cast<uint8_t>(mavlink::MavEstimatorType::Mocap);
+      mavlink::FrameBuffer buf;
+      if (const std::size_t n = truth_encoder.encode(odometry, buf)) clients->broadcast({buf.data(), n});
+    }
     if (!warned_no_answer && first_sensor_wall_s >= 0 && !actuators.ever_received() &&
         monotonic_s() - first_sensor_wall_s > config.no_answer_warning_s) {
       warned_no_answer = true;
@@ -262,9 +273,11 @@ struct Session::Impl {
     vehicle::PilotPose pose;
     const Eigen::Vector3d p = state.p_ENU_m - pilot_origin_ENU_m;
     pose.p_ENU_m = {p.x(), p.y(), p.z()};
+    pose.v_ENU_m_s = {state.v_ENU_m_s.x(), state.v_ENU_m_s.y(), state.v_ENU_m_s.z()};
     const Eigen::Matrix3d R = state.q_FLU_to_ENU.toRotationMatrix();
     pose.yaw_ENU_rad = std::atan2(R(1, 0), R(0, 0));
     auto out = pilot->step(state.time_s, pose);
+    pilot->observe_truth(state.time_s, pose);  // the session's pilot flies on truth itself
     mavlink::FrameBuffer buf;
     for (const auto& c : out.commands) forward_to_stack({buf.data(), pilot_encoder.encode(c, buf)});
     if (out.rc) forward_to_stack({buf.data(), pilot_encoder.encode(*out.rc, buf)});
@@ -360,10 +373,12 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   impl->sensors.emplace(vehicle, config.world, config.seed);
   impl->encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
   impl->vio_encoder = mavlink::FrameEncoder(config.sysid, kVioComponentId, config.protocol);
+  impl->truth_encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
   impl->stack_parser.emplace(impl->messages);
   impl->client_parser.emplace(impl->messages);
   impl->actuators = ActuatorInput(config.actuator_timeout_s);
   if (!(config.vio_rate_hz > 0)) return Error{"--vio-rate must be > 0"};
+  if (!(config.truth_rate_hz >= 0)) return Error{"--truth-rate must be >= 0 (0: no truth to clients)"};
   if (!(config.speed >= 0)) return Error{"--speed must be >= 0 (0: as fast as possible)"};
 
   if (config.link == FlightStackLink::SitlTcp) {
@@ -415,6 +430,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
                    "`hitl fly trajectory` against its GCS port instead"};
     vehicle::PilotConfig pc;
     pc.home_alt_msl_m = config.world.home.alt_m;
+    pc.mode = config.trajectory_mode;
     impl->pilot.emplace(*config.trajectory, pc);
     impl->pilot_origin_ENU_m = impl->model->state().p_ENU_m;
   }

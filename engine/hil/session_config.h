@@ -10,6 +10,7 @@
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
 #include "engine/vehicle/trajectory.h"
+#include "engine/vehicle/trajectory_pilot.h"
 
 namespace hitl::hil {
 
@@ -25,6 +26,9 @@ inline constexpr uint8_t kSimulatorComponentId = 1;
 /// ODOMETRY comes from its own component (MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY), with its own
 /// sequence, so a recording of both links shows no false loss.
 inline constexpr uint8_t kVioComponentId = 197;
+/// Ground truth for clients (trajectory tracking error, the dashboard): ODOMETRY in local NED from
+/// the simulator's own system id, estimator type MOCAP (external ground truth).
+inline constexpr double kTruthToClientsRate_hz = 50.0;
 
 /// Who is on the other end of the HIL link.
 enum class FlightStackLink {
@@ -65,10 +69,12 @@ struct SessionConfig {
   std::string record_path;                ///< --record FILE.tlog: everything sent and received
 
   std::optional<vehicle::Trajectory> trajectory;  ///< -t FILE: fly it (trajectory_rc), then end the session
+  vehicle::StickMode trajectory_mode = vehicle::StickMode::Velocity;  ///< --trajectory-mode
 
   uint16_t clients_port = kSessionClientPort;  ///< --clients (0: none)
   std::string clients_bind = "127.0.0.1";
   std::string gcs;                        ///< --gcs HOST:PORT (empty: none)
+  double truth_rate_hz = kTruthToClientsRate_hz;  ///< --truth-rate: truth ODOMETRY to clients (0: none)
 };
 
 }  // namespace hitl::hil

@@ -40,6 +40,10 @@ inline constexpr uint16_t kRequestAutopilotCapabilities = 520;
 inline constexpr float kArmDisarmForceMagic = 21196.0f;  ///< COMPONENT_ARM_DISARM param2: force
 }  // namespace cmd
 
+/// MAV_FRAME values hitl uses (ODOMETRY frame_id / child_frame_id).
+enum class MavFrame : uint8_t { LocalNed = 1, BodyFrd = 12, LocalFrd = 20 };
+/// MAV_ESTIMATOR_TYPE (ODOMETRY.estimator_type).
+enum class MavEstimatorType : uint8_t { Unknown = 0, Naive = 1, Vision = 2, Vio = 3, Gps = 4, GpsIns = 5, Mocap = 6, Lidar = 7, Autopilot = 8 };
 /// MAV_LANDED_STATE (EXTENDED_SYS_STATE.landed_state).
 enum class MavLandedState : uint8_t { Undefined = 0, OnGround = 1, InAir = 2, Takeoff = 3, Landing = 4 };
 
@@ -59,6 +63,22 @@ inline constexpr uint32_t kAhrs = 2097152;
 inline constexpr uint32_t kBattery = 33554432;
 inline constexpr uint32_t kPrearmCheck = 268435456;
 }  // namespace sys_status
+
+/// ESTIMATOR_STATUS_FLAGS bits (ESTIMATOR_STATUS.flags).
+namespace estimator_status {
+inline constexpr uint16_t kAttitude = 1;
+inline constexpr uint16_t kVelocityHoriz = 2;
+inline constexpr uint16_t kVelocityVert = 4;
+inline constexpr uint16_t kPosHorizRel = 8;
+inline constexpr uint16_t kPosHorizAbs = 16;
+inline constexpr uint16_t kPosVertAbs = 32;
+inline constexpr uint16_t kPosVertAgl = 64;
+inline constexpr uint16_t kConstPosMode = 128;
+inline constexpr uint16_t kPredPosHorizRel = 256;
+inline constexpr uint16_t kPredPosHorizAbs = 512;
+inline constexpr uint16_t kGpsGlitch = 1024;
+inline constexpr uint16_t kAccelError = 2048;
+}  // namespace estimator_status
 
 /// MAV_PROTOCOL_CAPABILITY bits (AUTOPILOT_VERSION.capabilities).
 namespace capability {

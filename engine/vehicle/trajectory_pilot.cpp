@@ -10,16 +10,28 @@ namespace {
 
 namespace msg = mavlink::msg;
 constexpr uint8_t kPx4MainModePosctl = 3;
+constexpr uint8_t kPx4MainModeStabilized = 7;
+constexpr double kGravity_m_s2 = 9.80665;
+constexpr double kMaxHoverCorrection_m_s2 = 3.0;  ///< the integrator's authority
 
 /// The stick that asks PX4's position mode for `fraction` of full rate: past the deadzone, which PX4
-/// cuts out and rescales (MPC_HOLD_DZ), so small corrections are not swallowed.
+/// cuts out and rescales (MPC_HOLD_DZ), so small corrections are not swallowed. Below a thousandth
+/// of full rate (rounding noise, e.g. cos(pi/2)) the stick stays centred instead of jumping to the
+/// deadzone's edge.
 double stick_for(double fraction, double deadzone) {
-  if (fraction == 0.0) return 0.0;
+  if (std::fabs(fraction) < 1e-3) return 0.0;
   const double f = std::clamp(std::fabs(fraction), 0.0, 1.0);
   return std::copysign(deadzone + (1.0 - deadzone) * f, fraction);
 }
 
 uint16_t pwm(double stick) { return static_cast<uint16_t>(std::lround(1500.0 + 500.0 * std::clamp(stick, -1.0, 1.0))); }
+
+/// The velocity the reference asks for here: its own (while flying it) plus a P term on the error.
+std::array<double, 3> velocity_setpoint(bool flying, const TrajectoryReference& ref, const PilotPose& pose, double kp_1_s) {
+  std::array<double, 3> v{};
+  for (std::size_t k = 0; k < 3; ++k) v[k] = (flying ? ref.v_ENU_m_s[k] : 0.0) + kp_1_s * (ref.p_ENU_m[k] - pose.p_ENU_m[k]);
+  return v;
+}
 
 }  // namespace
 
@@ -36,6 +48,22 @@ const char* to_string(PilotState s) {
     case PilotState::Failed: return "FAILED";
   }
   return "?";
+}
+
+const char* to_string(StickMode m) { return m == StickMode::Attitude ? "attitude" : "velocity"; }
+
+void TrajectoryPilot::ErrorStats::add(double err_m) {
+  sum_sq_ += err_m * err_m;
+  max_ = std::max(max_, err_m);
+  ++n_;
+}
+
+TrackingStats TrajectoryPilot::ErrorStats::stats() const {
+  TrackingStats s;
+  s.samples = n_;
+  s.rms_m = n_ ? std::sqrt(sum_sq_ / static_cast<double>(n_)) : 0.0;
+  s.max_m = max_;
+  return s;
 }
 
 TrajectoryPilot::TrajectoryPilot(Trajectory trajectory, PilotConfig config)
@@ -84,12 +112,56 @@ void TrajectoryPilot::enter(PilotState next, double t_s, PilotOutput& out, const
   out.event = std::string("trajectory: ") + to_string(next) + (why.empty() ? "" : " (" + why + ")");
 }
 
-TrackingStats TrajectoryPilot::tracking() const {
-  TrackingStats s;
-  s.samples = samples_;
-  s.rms_m = samples_ ? std::sqrt(sum_sq_ / static_cast<double>(samples_)) : 0.0;
-  s.max_m = max_err_;
-  return s;
+
+void TrajectoryPilot::observe_truth(double t_s, const PilotPose& truth) {
+  if (state_ != PilotState::Trajectory) return;
+  const auto ref = trajectory_.at(t_s - trajectory_start_s_);
+  double err_sq = 0;
+  for (std::size_t k = 0; k < 3; ++k) err_sq += (ref.p_ENU_m[k] - truth.p_ENU_m[k]) * (ref.p_ENU_m[k] - truth.p_ENU_m[k]);
+  truth_tracking_.add(std::sqrt(err_sq));
+}
+
+msg::RcChannelsOverride TrajectoryPilot::velocity_sticks(const TrajectoryReference& ref, const PilotPose& pose) const {
+  const auto v = velocity_setpoint(state_ == PilotState::Trajectory, ref, pose, config_.kp_1_s);
+  const double c = std::cos(pose.yaw_ENU_rad), s = std::sin(pose.yaw_ENU_rad);
+  const double forward = v[0] * c + v[1] * s;  // along the nose
+  const double right = v[0] * s - v[1] * c;    // to the right of the nose
+  const double dz = config_.stick_deadzone;
+  const double climb = stick_for(v[2] >= 0 ? v[2] / config_.max_up_m_s : v[2] / config_.max_down_m_s, dz);
+  const double yaw_rate = config_.kp_yaw_1_s * wrap_pi(ref.yaw_ENU_rad - pose.yaw_ENU_rad);  // ENU: CCW +
+  return sticks(stick_for(right / config_.max_xy_m_s, dz), stick_for(forward / config_.max_xy_m_s, dz),
+                stick_for(-yaw_rate / config_.max_yaw_rate_rad_s, dz), 0.5 + 0.5 * climb);
+}
+
+double throttle_for_thrust(double thrust, const PilotConfig& c) {
+  const double hover = c.thr_hover;
+  const double t = thrust <= hover ? 0.5 * (thrust - c.thr_min) / (hover - c.thr_min)
+                                   : 0.5 + 0.5 * (thrust - hover) / (c.thr_max - hover);
+  return std::clamp(t, 0.0, 1.0);
+}
+
+msg::RcChannelsOverride TrajectoryPilot::attitude_sticks(const TrajectoryReference& ref, const PilotPose& pose, double dt_s) {
+  const auto v_sp = velocity_setpoint(state_ == PilotState::Trajectory, ref, pose, config_.kp_1_s);
+  const double g = kGravity_m_s2;
+  // Horizontal: velocity error -> acceleration -> tilt, limited to what full stick gives.
+  double a_e = config_.kv_xy_1_s * (v_sp[0] - pose.v_ENU_m_s[0]);
+  double a_n = config_.kv_xy_1_s * (v_sp[1] - pose.v_ENU_m_s[1]);
+  const double a_max = g * std::tan(config_.max_tilt_rad);
+  if (const double a = std::hypot(a_e, a_n); a > a_max) {
+    a_e *= a_max / a;
+    a_n *= a_max / a;
+  }
+  const double c = std::cos(pose.yaw_ENU_rad), s = std::sin(pose.yaw_ENU_rad);
+  const double pitch_down_rad = std::atan((a_e * c + a_n * s) / g);  // forward acceleration: nose down
+  const double roll_rad = std::atan((a_e * s - a_n * c) / g);        // to the right: roll right
+  // Vertical: velocity error -> acceleration, an integrator learns the board's true hover thrust.
+  const double e_vz = v_sp[2] - pose.v_ENU_m_s[2];
+  hover_integral_ = std::clamp(hover_integral_ + config_.ki_z_1_s2 * e_vz * dt_s, -kMaxHoverCorrection_m_s2, kMaxHoverCorrection_m_s2);
+  const double a_up = config_.kv_z_1_s * e_vz + hover_integral_;
+  const double thrust = config_.thr_hover * (g + a_up) / g / (std::cos(pitch_down_rad) * std::cos(roll_rad));
+  const double yaw_rate = config_.kp_yaw_1_s * wrap_pi(ref.yaw_ENU_rad - pose.yaw_ENU_rad);  // ENU: CCW +
+  return sticks(roll_rad / config_.max_tilt_rad, pitch_down_rad / config_.max_tilt_rad,
+                std::clamp(-yaw_rate / config_.max_yaw_rate_rad_s, -1.0, 1.0), throttle_for_thrust(thrust, config_));
 }
 
 PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
@@ -119,13 +191,23 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         failure_ = "the board disarmed during takeoff";
         enter(PilotState::Failed, t_s, out, failure_);
       } else if (std::fabs(pose.p_ENU_m[2] - z0) < config_.takeoff_tolerance_m && takeoff_ack_ == 0) {
-        if (!mode_set_ && resend) {
-          out.commands.push_back(command(mavlink::cmd::kDoSetMode, {1, kPx4MainModePosctl, 0, 0, 0, 0, 0}));
+        // Centred sticks first: PX4 takes a manual mode only with manual control present.
+        if (t_s - last_rc_s_ >= 1.0 / config_.rc_rate_hz) {
+          last_rc_s_ = t_s;
+          out.rc = sticks(0, 0, 0, 0.5);
+        }
+        const bool attitude = config_.mode == StickMode::Attitude;
+        if (!mode_set_ && resend && in_state_s > 0.2) {
+          const float main_mode = attitude ? kPx4MainModeStabilized : kPx4MainModePosctl;
+          out.commands.push_back(command(mavlink::cmd::kDoSetMode, {1, main_mode, 0, 0, 0, 0, 0}));
           last_command_s_ = t_s;
         }
         if (mode_set_) {
           trajectory_start_s_ = t_s;
-          enter(PilotState::Trajectory, t_s, out, "at " + std::to_string(z0).substr(0, 4) + " m, Position mode");
+          last_rc_t_s_ = -1;
+          hover_integral_ = 0;
+          enter(PilotState::Trajectory, t_s, out,
+                "at " + std::to_string(z0).substr(0, 4) + " m, " + (attitude ? "Stabilized" : "Position") + " mode");
         }
       } else if (takeoff_ack_ != 0 && resend) {
         out.commands.push_back(command(mavlink::cmd::kNavTakeoff, {0, 0, 0, NAN, NAN, NAN, static_cast<float>(config_.home_alt_msl_m + z0)}));
@@ -136,33 +218,20 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
     case PilotState::Hold: {
       const double tt = t_s - trajectory_start_s_;
       const auto ref = trajectory_.at(tt);
-      std::array<double, 3> v{};
-      double err_sq = 0;
-      for (std::size_t k = 0; k < 3; ++k) {
-        const double e = ref.p_ENU_m[k] - pose.p_ENU_m[k];
-        err_sq += e * e;
-        v[k] = (state_ == PilotState::Trajectory ? ref.v_ENU_m_s[k] : 0.0) + config_.kp_1_s * e;
-      }
       if (state_ == PilotState::Trajectory) {
-        sum_sq_ += err_sq;
-        max_err_ = std::max(max_err_, std::sqrt(err_sq));
-        ++samples_;
+        double err_sq = 0;
+        for (std::size_t k = 0; k < 3; ++k) err_sq += (ref.p_ENU_m[k] - pose.p_ENU_m[k]) * (ref.p_ENU_m[k] - pose.p_ENU_m[k]);
+        tracking_.add(std::sqrt(err_sq));
         if (tt >= trajectory_.duration_s()) enter(PilotState::Hold, t_s, out, "trajectory flown");
       } else if (in_state_s >= config_.hold_s) {
         enter(PilotState::Land, t_s, out);
         break;
       }
       if (t_s - last_rc_s_ >= 1.0 / config_.rc_rate_hz) {
+        const double dt_s = last_rc_t_s_ < 0 ? 1.0 / config_.rc_rate_hz : std::clamp(t_s - last_rc_t_s_, 0.0, 0.2);
         last_rc_s_ = t_s;
-        const double c = std::cos(pose.yaw_ENU_rad), s = std::sin(pose.yaw_ENU_rad);
-        const double forward = v[0] * c + v[1] * s;  // along the nose
-        const double right = v[0] * s - v[1] * c;    // to the right of the nose
-        const double up = v[2];
-        const double dz = config_.stick_deadzone;
-        const double climb = stick_for(up >= 0 ? up / config_.max_up_m_s : up / config_.max_down_m_s, dz);
-        const double yaw_rate = config_.kp_yaw_1_s * wrap_pi(ref.yaw_ENU_rad - pose.yaw_ENU_rad);  // ENU: CCW +
-        out.rc = sticks(stick_for(right / config_.max_xy_m_s, dz), stick_for(forward / config_.max_xy_m_s, dz),
-                        stick_for(-yaw_rate / config_.max_yaw_rate_rad_s, dz), 0.5 + 0.5 * climb);
+        last_rc_t_s_ = t_s;
+        out.rc = config_.mode == StickMode::Attitude ? attitude_sticks(ref, pose, dt_s) : velocity_sticks(ref, pose);
       }
       break;
     }

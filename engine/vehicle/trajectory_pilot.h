@@ -1,7 +1,11 @@
 // The spec's trajectory_rc automation: INIT -> ARM -> TAKEOFF -> TRAJECTORY -> HOLD -> LAND ->
-// DISARM -> DONE. It arms, takes off to the first waypoint's height, switches to Position mode and
-// flies the trajectory with a P-controller from position error to sticks (sent as
-// RC_CHANNELS_OVERRIDE, PX4's default channel map), holds, lands and waits for the disarm.
+// DISARM -> DONE. It arms, takes off to the first waypoint's height, switches to a manual mode and
+// flies the trajectory by stick (RC_CHANNELS_OVERRIDE, PX4's default channel map), holds, lands
+// and waits for the disarm. Two stick modes:
+//   Velocity (Position mode, POSCTL): a P-controller from position error to velocity sticks.
+//   Attitude (Stabilized): the pilot closes position and velocity itself: position error -> velocity
+//     -> acceleration -> tilt sticks (stick = tilt / MPC_MAN_TILT_MAX) and a thrust stick through
+//     the inverse of PX4's hover-rescaled throttle curve, with an integrator for the hover thrust.
 // Pure logic: the caller gives it time, the vehicle's pose and the board's frames, and sends the
 // messages it returns.
 #pragma once
@@ -21,6 +25,9 @@ namespace hitl::vehicle {
 enum class PilotState { Init, Arm, Takeoff, Trajectory, Hold, Land, Disarm, Done, Failed };
 const char* to_string(PilotState state);
 
+enum class StickMode { Velocity, Attitude };
+const char* to_string(StickMode mode);  ///< "velocity", "attitude"
+
 struct PilotConfig {
   double rc_rate_hz = 20;               ///< RC_CHANNELS_OVERRIDE rate (PX4 loses RC after COM_RC_LOSS_T 0.5 s)
   double kp_1_s = 1.0;                  ///< velocity command per metre of position error
@@ -30,6 +37,15 @@ struct PilotConfig {
   double max_yaw_rate_rad_s = 2.618;    ///< MPC_MAN_Y_MAX 150 deg/s
   double kp_yaw_1_s = 1.5;
   double stick_deadzone = 0.1;          ///< PX4 MPC_HOLD_DZ: the pilot deflects past it to ask for small speeds
+  StickMode mode = StickMode::Velocity;
+  // Attitude mode: the board's Stabilized stick scaling (read from its parameters when possible).
+  double max_tilt_rad = 0.6109;         ///< MPC_MAN_TILT_MAX 35 deg: full roll/pitch stick
+  double thr_hover = 0.59;              ///< MPC_THR_HOVER: mid throttle stick
+  double thr_min = 0.08;                ///< MPC_MANTHR_MIN: zero throttle stick
+  double thr_max = 1.0;                 ///< MPC_THR_MAX: full throttle stick
+  double kv_xy_1_s = 1.8;               ///< acceleration per m/s of horizontal velocity error
+  double kv_z_1_s = 3.0;                ///< acceleration per m/s of vertical velocity error
+  double ki_z_1_s2 = 1.0;               ///< hover-thrust integrator, per m/s of vertical error per s
   double hold_s = 5.0;                  ///< HOLD after the last waypoint
   double takeoff_tolerance_m = 0.3;
   double home_alt_msl_m = 488.0;        ///< for NAV_TAKEOFF's AMSL altitude
@@ -41,8 +57,13 @@ struct PilotConfig {
 /// Where the vehicle is: ENU metres relative to where it rested at the start, yaw ENU.
 struct PilotPose {
   std::array<double, 3> p_ENU_m{};
+  std::array<double, 3> v_ENU_m_s{};  ///< used by the attitude mode
   double yaw_ENU_rad = 0;
 };
+
+/// The throttle stick that gives `thrust` in Stabilized: the inverse of PX4's hover-rescaled
+/// throttle curve with the config's MPC_THR_HOVER / MPC_MANTHR_MIN / MPC_THR_MAX.
+double throttle_for_thrust(double thrust, const PilotConfig& config);
 
 struct PilotOutput {
   std::vector<mavlink::msg::CommandLong> commands;
@@ -63,16 +84,34 @@ class TrajectoryPilot {
   /// HEARTBEAT (armed), SYS_STATUS (ready to arm), COMMAND_ACK, from the board.
   void on_board_frame(const mavlink::Frame& frame);
   PilotOutput step(double t_s, const PilotPose& pose);
+  /// Another view of where the vehicle is (the simulator's ground truth, same origin convention),
+  /// scored against the reference while the trajectory is flown; see truth_tracking().
+  void observe_truth(double t_s, const PilotPose& truth);
 
   PilotState state() const { return state_; }
   const std::string& failure() const { return failure_; }
-  TrackingStats tracking() const;
+  TrackingStats tracking() const { return tracking_.stats(); }
+  TrackingStats truth_tracking() const { return truth_tracking_.stats(); }
   bool finished() const { return state_ == PilotState::Done || state_ == PilotState::Failed; }
 
  private:
   void enter(PilotState next, double t_s, PilotOutput& out, const std::string& why = "");
   mavlink::msg::CommandLong command(uint16_t id, std::array<float, 7> params) const;
   mavlink::msg::RcChannelsOverride sticks(double roll, double pitch, double yaw, double throttle) const;
+  mavlink::msg::RcChannelsOverride velocity_sticks(const TrajectoryReference& ref, const PilotPose& pose) const;
+  mavlink::msg::RcChannelsOverride attitude_sticks(const TrajectoryReference& ref, const PilotPose& pose, double dt_s);
+  bool flying_reference() const { return state_ == PilotState::Trajectory || state_ == PilotState::Hold; }
+
+  /// Sum of squares and maximum of position error.
+  class ErrorStats {
+   public:
+    void add(double err_m);
+    TrackingStats stats() const;
+   private:
+    double sum_sq_ = 0;
+    double max_ = 0;
+    uint64_t n_ = 0;
+  };
 
   Trajectory trajectory_;
   PilotConfig config_;
@@ -86,9 +125,10 @@ class TrajectoryPilot {
   bool mode_set_ = false;
   std::optional<uint8_t> takeoff_ack_;
   std::string failure_;
-  double sum_sq_ = 0;
-  double max_err_ = 0;
-  uint64_t samples_ = 0;
+  ErrorStats tracking_;
+  ErrorStats truth_tracking_;
+  double hover_integral_ = 0;  ///< attitude mode: thrust ratio correction learned in flight
+  double last_rc_t_s_ = -1;
 };
 
 }  // namespace hitl::vehicle

@@ -73,7 +73,10 @@ bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
   bool done = false;
   auto on_frame = [&](const mavlink::Frame& f) {
     if (done || f.desc == nullptr) return;
-    if (sysid_ != 0 && f.sysid != sysid_) return;
+    if (sysid_ != 0 && f.sysid != sysid_) {
+      if (other_systems_) other_systems_(f);
+      return;
+    }
     done = handler(f);
   };
   for (;;) {

@@ -54,6 +54,9 @@ class VehicleLink {
   /// Reads frames from the target system for up to `timeout_s` (sending our HEARTBEAT each
   /// second); true as soon as `handler` returns true.
   bool wait(double timeout_s, const FrameHandler& handler);
+  /// Frames from other systems seen during wait() (e.g. the simulator's ground truth, sysid 250,
+  /// when connected through a session); none by default.
+  void on_other_systems(std::function<void(const mavlink::Frame&)> handler) { other_systems_ = std::move(handler); }
 
   uint8_t target_sysid() const { return sysid_; }
   uint8_t target_compid() const { return compid_; }
@@ -78,6 +81,7 @@ class VehicleLink {
   uint8_t sysid_ = 0;
   uint8_t compid_ = 0;
   double last_heartbeat_s_ = -1e9;
+  std::function<void(const mavlink::Frame&)> other_systems_;
 };
 
 }  // namespace hitl::vehicle

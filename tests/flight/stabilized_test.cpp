@@ -56,6 +56,9 @@ TEST(FlightStabilized, SticksAreAttitudeAndThrust) {
     sticks.throttle = throttle;
     core.handle_sticks(sticks);
   };
+  const CommandReply no_sticks = core.set_mode(FlightMode::Stabilized);
+  EXPECT_EQ(no_sticks.result, CommandResult::Denied);
+  EXPECT_NE(no_sticks.reason.find("no manual control"), std::string::npos) << no_sticks.reason;
   hold_sticks(0.0, 0.5);
   ASSERT_EQ(core.set_mode(FlightMode::Stabilized).result, CommandResult::Accepted);
   EXPECT_EQ(core.custom_mode(), 0x00070000u);

@@ -167,6 +167,11 @@ CommandReply FlightCore::land() {
 
 CommandReply FlightCore::set_mode(FlightMode mode) {
   if (mode == FlightMode::Takeoff) return takeoff({});
+  if (mode == FlightMode::Stabilized && !sticks_fresh()) {  // PX4's mode requirement: manual control
+    const std::string reason = "Switching to Stabilized is currently not possible: no manual control input";
+    say(severity::kCritical, reason);
+    return {CommandResult::Denied, reason};
+  }
   enter_mode(mode);
   return {CommandResult::Accepted, ""};
 }
