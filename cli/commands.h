@@ -19,5 +19,6 @@ void add_params_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_arm_commands(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_shell_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state);
+void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state);
 
 }  // namespace hitl::cli

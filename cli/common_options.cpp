@@ -59,7 +59,7 @@ std::atomic<bool>& stop_storage() {
   static std::atomic<bool> stop{false};
   return stop;
 }
-extern "C" void on_stop_signal(int sig) {
+extern "C" void hitl_cli_on_stop_signal(int sig) {
   stop_storage().store(true);
   std::signal(sig, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
@@ -67,7 +67,7 @@ extern "C" void on_stop_signal(int sig) {
 
 const std::atomic<bool>& stop_flag_on_signals() {
   struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;
+  sa.sa_handler = hitl_cli_on_stop_signal;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   add_arm_commands(app, options, state);
   add_shell_command(app, options, state);
   add_fly_command(app, options, state);
+  add_bridge_command(app, options, state);
 
   try {
     app.parse(argc, argv);

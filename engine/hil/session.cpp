@@ -21,6 +21,7 @@
 #include "engine/mavlink/wire_units.h"
 #include "engine/model/multicopter.h"
 #include "engine/net/client_port.h"
+#include "engine/router/router.h"
 #include "engine/net/tcp_server.h"
 #include "engine/net/udp_endpoint.h"
 #include "engine/sensors/sensor_suite.h"
@@ -60,6 +61,8 @@ struct Session::Impl {
   std::vector<uint8_t> tcp_tx;
   std::optional<net::UdpEndpoint> vio;
   std::optional<net::ClientPort> clients;
+  router::Router router;  ///< board <-> clients, the same code path as hitl bridge (no dedup: one path)
+  router::LinkId board_link = 0, clients_link = 0;
   std::optional<mavlink::TlogWriter> recorder;
   std::optional<vehicle::TrajectoryPilot> pilot;
   mavlink::FrameEncoder pilot_encoder{mavlink::kGcsSystemId, mavlink::kCompIdMissionPlanner};  ///< a GCS's identity
@@ -157,8 +160,7 @@ struct Session::Impl {
     if (f.is<mavlink::msg::HilActuatorControls>()) {
       actuators.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, now_s);
     } else if (!is_hil_message(f.msgid) && clients) {
-      clients->broadcast(f.bytes());
-      ++routed_to_clients;
+      router.route(f, board_link, now_s);
     }
   }
 
@@ -187,8 +189,7 @@ struct Session::Impl {
         const auto from = d->from;
         client_parser->parse_datagram(d->bytes, [&](const mavlink::Frame& f) {
           if (is_hil_message(f.msgid)) return;
-          forward_to_stack(f.bytes());
-          clients->broadcast(f.bytes(), from);  // clients see each other, like a router
+          router.route(f, clients_link, now_s, from);  // to the board, and to the other clients
         });
       }
     }
@@ -423,6 +424,15 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     auto cp = net::ClientPort::open(config.clients_bind, config.clients_port, fixed);
     if (!cp) return Error{cp.error().message + " (is another hitl sim or hitl bridge running? --clients 0 disables)"};
     impl->clients.emplace(std::move(cp.value()));
+    Impl* i = impl.get();
+    impl->board_link = impl->router.add_link("board", [i](std::span<const uint8_t> bytes, const auto&) { i->forward_to_stack(bytes); });
+    impl->clients_link = impl->router.add_link(
+        "clients",
+        [i](std::span<const uint8_t> bytes, const std::optional<net::SocketAddress>& except) {
+          i->clients->broadcast(bytes, except);
+          ++i->routed_to_clients;
+        },
+        /*hub=*/true);
   }
   if (config.trajectory) {
     if (config.link == FlightStackLink::SitlTcp)

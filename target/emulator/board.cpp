@@ -455,6 +455,17 @@ struct Board::Impl {
       case msg::SerialControl::kId:
         for (const auto& reply : shell->on_serial_control(f.as<msg::SerialControl>())) inst.send(reply);
         break;
+      case msg::Timesync::kId: {  // PX4's Timesync: a request (tc1 0) is answered with our clock in tc1
+        const auto m = f.as<msg::Timesync>();
+        if (m.tc1 != 0) break;
+        msg::Timesync reply;
+        reply.tc1 = static_cast<int64_t>(monotonic_us()) * 1000;
+        reply.ts1 = m.ts1;
+        reply.target_system = f.sysid;
+        reply.target_component = f.compid;
+        inst.send(reply);
+        break;
+      }
       case msg::RcChannelsOverride::kId: {
         const auto m = f.as<msg::RcChannelsOverride>();
         if (m.target_system != 0 && m.target_system != config.sysid) return;

@@ -1,0 +1,137 @@
+// hitl bridge: the board link without the simulator (engine/bridge), with link health each second.
+#include <cstdio>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "engine/bridge/bridge.h"
+
+namespace hitl::cli {
+namespace {
+
+struct BridgeOptions {
+  bridge::BridgeConfig config;
+  std::vector<std::string> endpoints;
+  double dedup_ms = 100;
+};
+
+std::string kilobytes(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f kB", static_cast<double>(bytes) / 1000.0);
+  return text;
+}
+
+nlohmann::json to_json(const bridge::BridgeHealth& h) {
+  nlohmann::json j = {{"type", "link"}, {"uptime_s", h.uptime_s}, {"board", h.board_state},
+                      {"heartbeat_age_s", h.heartbeat_age_s ? nlohmann::json(*h.heartbeat_age_s) : nlohmann::json(nullptr)},
+                      {"rtt_ms", h.rtt_ms ? nlohmann::json(*h.rtt_ms) : nlohmann::json(nullptr)},
+                      {"clients", h.clients}, {"duplicates", h.duplicates}};
+  nlohmann::json loss = nlohmann::json::object();
+  for (const auto& [source, l] : h.loss) loss[source] = {{"received", l.received}, {"lost", l.lost}, {"loss_pct", l.loss_pct}};
+  j["loss"] = loss;
+  nlohmann::json links = nlohmann::json::array();
+  for (const auto& l : h.links) {
+    links.push_back({{"name", l.name}, {"partner", l.partner}, {"connected", l.connected}, {"packets_in", l.packets_in},
+                     {"bytes_in", l.bytes_in}, {"packets_out", l.packets_out}, {"bytes_out", l.bytes_out},
+                     {"duplicates_in", l.duplicates_in}});
+  }
+  j["links"] = links;
+  return j;
+}
+
+std::string to_line(const bridge::BridgeHealth& h) {
+  const auto& board = h.links.front();
+  char text[400];
+  int n = std::snprintf(text, sizeof text, "board %s %-7s in %llu pkt %s  out %llu pkt %s", board.partner.c_str(),
+                        h.board_state.c_str(), static_cast<unsigned long long>(board.packets_in), kilobytes(board.bytes_in).c_str(),
+                        static_cast<unsigned long long>(board.packets_out), kilobytes(board.bytes_out).c_str());
+  std::string line(text, static_cast<std::size_t>(std::max(n, 0)));
+  if (h.heartbeat_age_s) {
+    std::snprintf(text, sizeof text, "  heartbeat %.1f s ago", *h.heartbeat_age_s);
+    line += text;
+  }
+  if (h.rtt_ms) {
+    std::snprintf(text, sizeof text, "  rtt %.2f ms", *h.rtt_ms);
+    line += text;
+  }
+  for (const auto& [source, l] : h.loss) {
+    std::snprintf(text, sizeof text, "  loss %s %.1f %%", source.c_str(), l.loss_pct);
+    line += text;
+  }
+  line += "  clients " + std::to_string(h.clients);
+  for (std::size_t i = 1; i < h.links.size(); ++i) {
+    const auto& l = h.links[i];
+    if (l.name == "clients") continue;
+    line += "  " + l.name + (l.connected ? " " : " (down) ") + std::to_string(l.packets_in) + "/" + std::to_string(l.packets_out) + " pkt";
+  }
+  if (h.duplicates) line += "  duplicates dropped " + std::to_string(h.duplicates);
+  return line;
+}
+
+class Printer : public bridge::BridgeObserver {
+ public:
+  explicit Printer(const GlobalOptions& g) : g_(g) {}
+  void on_event(const std::string& text, bool warning) override {
+    if (g_.quiet && !warning) return;
+    std::cerr << "hitl bridge: " << text << std::endl;
+  }
+  void on_health(const bridge::BridgeHealth& h) override {
+    if (g_.json) print_json_line(to_json(h));
+    else if (!g_.quiet) std::cout << to_line(h) << std::endl;
+  }
+
+ private:
+  const GlobalOptions& g_;
+};
+
+int run(const GlobalOptions& g, BridgeOptions& o) {
+  for (const auto& text : o.endpoints) {
+    auto spec = bridge::parse_endpoint(text);
+    if (!spec) {
+      log_error("bridge", spec.error().message);
+      return kExitUsage;
+    }
+    o.config.endpoints.push_back(*spec);
+  }
+  o.config.dedup_window_s = o.dedup_ms / 1000.0;
+  Printer printer(g);
+  const auto& stop = stop_flag_on_signals();
+  auto st = bridge::run_bridge(o.config, printer, stop);
+  if (!st) {
+    log_error("bridge", st.error().message);
+    return kExitFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state) {
+  auto o = std::make_shared<BridgeOptions>();
+  auto& c = o->config;
+  auto* sub = app.add_subcommand(
+      "bridge",
+      "The board link without the simulator: route MAVLink between the board's GCS instance, local clients "
+      "(127.0.0.1:14600) and --endpoint links, like mavlink-router; link health every second");
+  sub->add_option("-i,--target-ip", c.board_ip, "The board's IP (a VOXL2 on USB-Ethernet: 192.168.101.2)")->capture_default_str();
+  sub->add_option("--port", c.board_port, "The board's GCS MAVLink instance")->capture_default_str()->check(CLI::Range(1, 65535));
+  sub->add_option("--local-port", c.local_port,
+                  "Local port towards the board: fixed, since PX4 answers only the first port it heard")
+      ->capture_default_str()->check(CLI::Range(1, 65535));
+  sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local clients (other hitl commands); 0: none")
+      ->capture_default_str()->check(CLI::Range(0, 65535));
+  sub->add_option("--endpoint", o->endpoints,
+                  "More links: udp:HOST:PORT (QGroundControl: udp:127.0.0.1:14550), udpin:PORT, tcp:HOST:PORT; repeatable")
+      ->type_name("KIND:ADDRESS");
+  sub->add_option("--dedup", o->dedup_ms, "Drop a frame seen again within this many ms (arriving on two paths); 0: off")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  sub->add_option("--duration", c.duration_s, "Seconds to run (0: until Ctrl-C)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  sub->footer(
+      "Health each second on stdout (--json: one object per line). The board going away and coming back is said\n"
+      "on stderr within 2 s; clients keep their sockets and traffic resumes by itself.\n"
+      "Examples:\n"
+      "  hitl bridge -i 192.168.101.2 --endpoint udp:127.0.0.1:14550   # board + QGroundControl\n"
+      "  hitl bridge & hitl arm && hitl fly takeoff                     # commands go through the bridge");
+  sub->callback([&options, &state, o]() { state.exit_code = run(options, *o); });
+}
+
+}  // namespace hitl::cli

@@ -1,0 +1,323 @@
+#include "engine/bridge/bridge.h"
+
+#include <poll.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <deque>
+#include <memory>
+
+#include "engine/common/clock.h"
+#include "engine/mavlink/enums.h"
+#include "engine/mavlink/frame_encoder.h"
+#include "engine/mavlink/frame_parser.h"
+#include "engine/mavlink/heartbeat.h"
+#include "engine/mavlink/message_set.h"
+#include "engine/mavlink/sequence_tracker.h"
+#include "engine/net/client_port.h"
+#include "engine/net/tcp_client.h"
+#include "engine/net/udp_endpoint.h"
+#include "engine/router/router.h"
+
+namespace hitl::bridge {
+namespace {
+
+namespace msg = mavlink::msg;
+constexpr double kReconnectPeriod_s = 2.0;
+constexpr int kTcpConnectTimeout_ms = 500;
+constexpr std::size_t kTimesyncRemembered = 8;
+
+std::string source_key(uint8_t sysid, uint8_t compid) { return std::to_string(sysid) + "/" + std::to_string(compid); }
+
+/// One --endpoint: its socket (or connection), its parser and its place in the router.
+struct Endpoint {
+  EndpointSpec spec;
+  std::optional<net::UdpEndpoint> udp;
+  std::optional<net::TcpClient> tcp;
+  std::optional<net::SocketAddress> tcp_address;
+  std::unique_ptr<mavlink::FrameParser> parser;
+  router::LinkId link = 0;
+  double next_connect_s = 0;
+  bool warned = false;  ///< a failed connect is said once, not every 2 s
+};
+
+class Bridge {
+ public:
+  Bridge(const BridgeConfig& config, BridgeObserver& observer)
+      : config_(config), observer_(observer), router_(config.dedup_window_s), board_parser_(messages_),
+        clients_parser_(messages_), own_(kBridgeSystemId, kBridgeComponentId) {}
+
+  Status open() {
+    auto target = net::SocketAddress::resolve(config_.board_ip, config_.board_port);
+    if (!target) return Error{"-i " + config_.board_ip + ": " + target.error().message};
+    board_address_ = *target;
+    net::UdpEndpoint::Config c;
+    c.bind_port = config_.local_port;
+    c.peer = *target;
+    c.policy = net::PartnerPolicy::Fixed;
+    c.name = "the board link's local port (--local-port)";
+    auto ep = net::UdpEndpoint::open(c);
+    if (!ep) return Error{ep.error().message + " (a hitl sim, another hitl bridge or a direct command owns it?)"};
+    board_.emplace(std::move(ep.value()));
+    board_link_ = router_.add_link("board", [this](std::span<const uint8_t> bytes, const auto&) { (void)board_->send(bytes); });
+
+    if (config_.clients_port != 0) {
+      auto cp = net::ClientPort::open(config_.clients_bind, config_.clients_port, {});
+      if (!cp) return Error{cp.error().message + " (is a hitl sim or another hitl bridge running? --clients 0 disables)"};
+      clients_.emplace(std::move(cp.value()));
+      clients_link_ = router_.add_link(
+          "clients", [this](std::span<const uint8_t> bytes, const std::optional<net::SocketAddress>& except) {
+            clients_->broadcast(bytes, except);
+          },
+          /*hub=*/true);
+    }
+    for (const auto& spec : config_.endpoints) {
+      auto e = std::make_unique<Endpoint>();
+      e->spec = spec;
+      e->parser = std::make_unique<mavlink::FrameParser>(messages_);
+      if (spec.kind == EndpointSpec::Kind::Tcp) {
+        auto a = net::SocketAddress::resolve(spec.host, spec.port);
+        if (!a) return Error{"--endpoint " + spec.text + ": " + a.error().message};
+        e->tcp_address = *a;
+      } else {
+        net::UdpEndpoint::Config uc;
+        uc.name = "--endpoint " + spec.text;
+        if (spec.kind == EndpointSpec::Kind::Udp) {
+          auto a = net::SocketAddress::resolve(spec.host, spec.port);
+          if (!a) return Error{"--endpoint " + spec.text + ": " + a.error().message};
+          uc.peer = *a;
+          uc.policy = net::PartnerPolicy::Fixed;
+        } else {
+          uc.bind_port = spec.port;
+          uc.policy = net::PartnerPolicy::LastSender;
+        }
+        auto u = net::UdpEndpoint::open(uc);
+        if (!u) return u.error();
+        e->udp.emplace(std::move(u.value()));
+      }
+      Endpoint* raw = e.get();
+      e->link = router_.add_link(spec.text, [raw](std::span<const uint8_t> bytes, const auto&) {
+        if (raw->udp) (void)raw->udp->send(bytes);  // udpin: nobody to answer until someone spoke
+        else if (raw->tcp) (void)raw->tcp->send(bytes);
+      });
+      endpoints_.push_back(std::move(e));
+    }
+    return Ok{};
+  }
+
+  std::string describe() const {
+    std::string out = "bridge: board " + board_address_->to_string() + " from local port " + std::to_string(config_.local_port);
+    if (clients_) out += ", clients on " + clients_->local_address()->to_string();
+    for (const auto& e : endpoints_) out += ", " + e->spec.text;
+    return out;
+  }
+
+  Status run(const std::atomic<bool>& stop) {
+    start_s_ = monotonic_s();
+    next_tick_s_ = start_s_;
+    while (!stop.load()) {
+      const double now = monotonic_s();
+      if (config_.duration_s > 0 && now - start_s_ >= config_.duration_s) break;
+      if (now >= next_tick_s_) {
+        next_tick_s_ += config_.health_period_s;
+        if (next_tick_s_ < now) next_tick_s_ = now + config_.health_period_s;
+        tick(now);
+      }
+      connect_tcp_endpoints(now);
+      wait_readable(std::min(50.0, (next_tick_s_ - monotonic_s()) * 1000.0));
+      drain(monotonic_s());
+      watch_board(monotonic_s());
+    }
+    return Ok{};
+  }
+
+ private:
+  void wait_readable(double timeout_ms) {
+    std::vector<pollfd> fds;
+    fds.push_back({board_->fd(), POLLIN, 0});
+    if (clients_) fds.push_back({clients_->fd(), POLLIN, 0});
+    for (const auto& e : endpoints_) {
+      if (e->udp) fds.push_back({e->udp->fd(), POLLIN, 0});
+    }
+    const bool any_tcp = std::any_of(endpoints_.begin(), endpoints_.end(), [](const auto& e) { return e->tcp.has_value(); });
+    const int ms = any_tcp ? 5 : std::max(0, static_cast<int>(timeout_ms));  // TCP is polled by its own wait
+    (void)::poll(fds.data(), fds.size(), ms);
+  }
+
+  void drain(double now) {
+    while (auto d = board_->receive()) {
+      board_parser_.parse_datagram(d->bytes, [&](const mavlink::Frame& f) { on_board_frame(f, now); });
+    }
+    if (clients_) {
+      while (auto d = clients_->receive()) {
+        const auto from = d->from;
+        clients_parser_.parse_datagram(d->bytes, [&](const mavlink::Frame& f) { router_.route(f, clients_link_, now, from); });
+      }
+    }
+    for (auto& e : endpoints_) {
+      if (e->udp) {
+        while (auto d = e->udp->receive()) {
+          e->parser->parse_datagram(d->bytes, [&](const mavlink::Frame& f) { router_.route(f, e->link, now); });
+        }
+      } else if (e->tcp && e->tcp->wait_readable(0)) {
+        auto bytes = e->tcp->receive();
+        if (!bytes) {
+          observer_.on_event("--endpoint " + e->spec.text + ": connection closed; reconnecting every 2 s", true);
+          e->tcp.reset();
+          e->next_connect_s = now + kReconnectPeriod_s;
+        } else {
+          e->parser->feed(*bytes, [&](const mavlink::Frame& f) { router_.route(f, e->link, now); });
+        }
+      }
+    }
+  }
+
+  void connect_tcp_endpoints(double now) {
+    for (auto& e : endpoints_) {
+      if (!e->tcp_address || e->tcp || now < e->next_connect_s) continue;
+      e->next_connect_s = now + kReconnectPeriod_s;
+      auto c = net::TcpClient::connect(*e->tcp_address, kTcpConnectTimeout_ms, "--endpoint " + e->spec.text);
+      if (c) {
+        e->tcp.emplace(std::move(c.value()));
+        e->parser = std::make_unique<mavlink::FrameParser>(messages_);
+        observer_.on_event("--endpoint " + e->spec.text + ": connected", false);
+      } else if (!e->warned) {
+        e->warned = true;
+        observer_.on_event(c.error().message + "; retrying every 2 s", true);
+      }
+    }
+  }
+
+  void on_board_frame(const mavlink::Frame& f, double now) {
+    last_frame_s_ = now;
+    sequences_[source_key(f.sysid, f.compid)].observe(f.seq);
+    if (f.is<msg::Heartbeat>() && f.as<msg::Heartbeat>().autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid)) {
+      last_heartbeat_s_ = now;
+      board_sysid_ = f.sysid;
+    }
+    if (f.is<msg::Timesync>()) {  // our own request's answer: measured, not routed
+      const auto t = f.as<msg::Timesync>();
+      if (t.tc1 != 0 && t.target_system == kBridgeSystemId && t.target_component == kBridgeComponentId) {
+        for (const auto sent : timesync_sent_ns_) {
+          if (sent == t.ts1) rtt_ms_ = static_cast<double>(static_cast<int64_t>(monotonic_us()) * 1000 - t.ts1) / 1e6;
+        }
+        return;
+      }
+    }
+    router_.route(f, board_link_, now);
+  }
+
+  void watch_board(double now) {
+    if (last_frame_s_ < 0) return;
+    const double silent_s = now - last_frame_s_;
+    if (!gone_ && silent_s > kBoardGoneAfter_s) {
+      gone_ = true;
+      gone_since_s_ = last_frame_s_;
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "board gone: nothing from %s for %.1f s (cable unplugged, PX4 restarted?); every socket stays open, "
+                    "traffic resumes when it is back",
+                    board_address_->to_string().c_str(), silent_s);
+      observer_.on_event(text, true);
+    } else if (gone_ && silent_s < kBoardGoneAfter_s) {
+      gone_ = false;
+      char text[120];
+      std::snprintf(text, sizeof text, "board back after %.1f s", now - gone_since_s_);
+      observer_.on_event(text, false);
+    }
+  }
+
+  template <class M>
+  void send_own(router::LinkId link, const M& message) {
+    mavlink::FrameBuffer buf;
+    if (const std::size_t n = own_.encode(message, buf)) router_.send(link, {buf.data(), n});
+  }
+
+  void tick(double now) {
+    // Our HEARTBEAT (an onboard component, not a ground station: PX4's GCS-loss logic must not
+    // count the bridge) makes a fresh PX4 instance take this port as its partner.
+    msg::Heartbeat hb;
+    hb.type = static_cast<uint8_t>(mavlink::MavType::Onboard);
+    hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
+    hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
+    hb.mavlink_version = mavlink::kMavlinkVersion;
+    send_own(board_link_, hb);
+    msg::Timesync ts;
+    ts.tc1 = 0;
+    ts.ts1 = static_cast<int64_t>(monotonic_us()) * 1000;
+    ts.target_system = board_sysid_;
+    timesync_sent_ns_.push_back(ts.ts1);
+    if (timesync_sent_ns_.size() > kTimesyncRemembered) timesync_sent_ns_.pop_front();
+    send_own(board_link_, ts);
+    observer_.on_health(health(now));
+  }
+
+  BridgeHealth health(double now) const {
+    BridgeHealth h;
+    h.uptime_s = now - start_s_;
+    h.board_state = last_frame_s_ < 0 ? "waiting" : gone_ ? "gone" : "up";
+    if (last_heartbeat_s_ >= 0) h.heartbeat_age_s = now - last_heartbeat_s_;
+    h.rtt_ms = rtt_ms_;
+    for (const auto& [key, tracker] : sequences_) {
+      const auto& s = tracker.stats();
+      h.loss[key] = SourceLoss{s.received, s.lost, 100.0 * s.loss_ratio()};
+    }
+    const auto link_health = [&](router::LinkId id, std::string partner, bool connected) {
+      const auto& c = router_.counters(id);
+      LinkHealth l;
+      l.name = router_.name(id);
+      l.partner = std::move(partner);
+      l.connected = connected;
+      l.packets_in = c.frames_in;
+      l.bytes_in = c.bytes_in;
+      l.packets_out = c.frames_out;
+      l.bytes_out = c.bytes_out;
+      l.duplicates_in = c.duplicates_in;
+      return l;
+    };
+    h.links.push_back(link_health(board_link_, board_address_->to_string(), last_frame_s_ >= 0 && !gone_));
+    if (clients_) {
+      h.clients = clients_->client_count();
+      h.links.push_back(link_health(clients_link_, clients_->local_address()->to_string(), h.clients > 0));
+    }
+    for (const auto& e : endpoints_) {
+      std::string partner;
+      if (e->udp && e->udp->partner()) partner = e->udp->partner()->to_string();
+      if (e->tcp_address) partner = e->tcp_address->to_string();
+      h.links.push_back(link_health(e->link, partner, e->udp ? e->udp->partner().has_value() : e->tcp.has_value()));
+    }
+    h.duplicates = router_.duplicates();
+    return h;
+  }
+
+  const BridgeConfig& config_;
+  BridgeObserver& observer_;
+  mavlink::MessageSet messages_ = mavlink::MessageSet::compiled();
+  router::Router router_;
+  mavlink::FrameParser board_parser_;
+  mavlink::FrameParser clients_parser_;
+  mavlink::FrameEncoder own_;
+  std::optional<net::SocketAddress> board_address_;
+  std::optional<net::UdpEndpoint> board_;
+  std::optional<net::ClientPort> clients_;
+  std::vector<std::unique_ptr<Endpoint>> endpoints_;
+  router::LinkId board_link_ = 0, clients_link_ = 0;
+  std::map<std::string, mavlink::SequenceTracker> sequences_;
+  std::deque<int64_t> timesync_sent_ns_;
+  std::optional<double> rtt_ms_;
+  uint8_t board_sysid_ = 0;
+  double start_s_ = 0, next_tick_s_ = 0;
+  double last_frame_s_ = -1, last_heartbeat_s_ = -1, gone_since_s_ = 0;
+  bool gone_ = false;
+};
+
+}  // namespace
+
+Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop) {
+  Bridge bridge(config, observer);
+  if (auto st = bridge.open(); !st) return st;
+  observer.on_event(bridge.describe(), false);
+  return bridge.run(stop);
+}
+
+}  // namespace hitl::bridge

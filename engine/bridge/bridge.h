@@ -1,0 +1,75 @@
+// hitl bridge: the board link without the simulator. Owns the connection to the board's GCS
+// MAVLink instance (from the fixed local port 14562: PX4 answers only the first sender it heard),
+// and routes with the session's router between it, local clients on 127.0.0.1:14600 and any
+// --endpoint links. Once a second it reports link health: partner, packets and bytes each way,
+// per-source loss, round-trip time (TIMESYNC, as PX4 answers it) and the age of the board's last
+// HEARTBEAT; it says within 2 s when the board goes away and when it comes back, and keeps every
+// socket open meanwhile so clients and traffic resume by themselves.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/bridge/endpoint_spec.h"
+#include "engine/common/expected.h"
+#include "engine/hil/session_config.h"
+#include "engine/vehicle/vehicle_link.h"
+
+namespace hitl::bridge {
+
+inline constexpr uint8_t kBridgeSystemId = 255;        ///< with compid MAV_COMP_ID_UDP_BRIDGE
+inline constexpr uint8_t kBridgeComponentId = 240;
+inline constexpr double kBoardGoneAfter_s = 1.5;       ///< no frame this long: gone (HEARTBEAT is 1 Hz)
+
+struct BridgeConfig {
+  std::string board_ip = "127.0.0.1";               ///< -i (a VOXL2 on USB-Ethernet: 192.168.101.2)
+  uint16_t board_port = vehicle::kBoardGcsPort;     ///< --port: the board's GCS MAVLink instance
+  uint16_t local_port = vehicle::kDirectLocalPort;  ///< --local-port: fixed (PX4's partner lock)
+  std::string clients_bind = "127.0.0.1";
+  uint16_t clients_port = hil::kSessionClientPort;  ///< --clients (0: none)
+  std::vector<EndpointSpec> endpoints;     ///< --endpoint
+  double dedup_window_s = 0.1;             ///< --dedup (0: off)
+  double duration_s = 0;                   ///< --duration (0: until stopped)
+  double health_period_s = 1.0;
+};
+
+struct SourceLoss {
+  uint64_t received = 0;
+  uint64_t lost = 0;
+  double loss_pct = 0;
+};
+
+struct LinkHealth {
+  std::string name;     ///< "board", "clients", "udp:127.0.0.1:14550"
+  std::string partner;  ///< peer address, or "" when none yet
+  bool connected = false;
+  uint64_t packets_in = 0, bytes_in = 0, packets_out = 0, bytes_out = 0, duplicates_in = 0;
+};
+
+struct BridgeHealth {
+  double uptime_s = 0;
+  std::string board_state;  ///< "waiting" (never heard), "up", "gone"
+  std::optional<double> heartbeat_age_s;
+  std::optional<double> rtt_ms;                ///< last TIMESYNC round trip
+  std::map<std::string, SourceLoss> loss;      ///< per board source "sysid/compid"
+  std::vector<LinkHealth> links;               ///< board first, then clients, then endpoints
+  std::size_t clients = 0;
+  uint64_t duplicates = 0;
+};
+
+class BridgeObserver {
+ public:
+  virtual ~BridgeObserver() = default;
+  virtual void on_event(const std::string& text, bool warning) = 0;
+  virtual void on_health(const BridgeHealth& health) = 0;
+};
+
+/// Runs until `stop` is set, the duration ends, or an error (a port in use, a bad address).
+Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop);
+
+}  // namespace hitl::bridge

@@ -1,0 +1,70 @@
+#include "engine/router/router.h"
+
+#include <algorithm>
+
+#include "engine/mavlink/message_desc.h"
+
+namespace hitl::router {
+
+std::pair<uint8_t, uint8_t> target_of(const mavlink::Frame& frame) {
+  if (frame.desc == nullptr) return {0, 0};
+  const auto read = [&](const char* name) -> uint8_t {
+    const auto* field = frame.desc->field(name);
+    if (field == nullptr || field->offset >= frame.payload.size()) return 0;
+    return frame.payload[field->offset];  // zero-extended past a truncated payload
+  };
+  const uint8_t system = read("target_system");
+  // MANUAL_CONTROL names its system in `target`.
+  return {system != 0 ? system : read("target"), read("target_component")};
+}
+
+LinkId Router::add_link(std::string name, Sender send, bool hub) {
+  links_.push_back(Link{std::move(name), std::move(send), hub, {}, {}});
+  return links_.size() - 1;
+}
+
+bool Router::wants(const Link& link, uint8_t target_system, uint8_t target_component) const {
+  if (target_system == 0) return true;
+  // Nobody has shown this system yet: everywhere, so that a first command reaches a silent vehicle.
+  const bool anyone_knows = std::any_of(links_.begin(), links_.end(), [&](const Link& l) {
+    return std::any_of(l.systems.begin(), l.systems.end(), [&](const auto& s) { return s.first == target_system; });
+  });
+  if (!anyone_knows) return true;
+  return std::any_of(link.systems.begin(), link.systems.end(), [&](const auto& s) {
+    return s.first == target_system && (target_component == 0 || s.second == target_component);
+  });
+}
+
+std::size_t Router::route(const mavlink::Frame& frame, LinkId from, double now_s,
+                          const std::optional<net::SocketAddress>& peer) {
+  Link& source = links_.at(from);
+  source.counters.frames_in += 1;
+  source.counters.bytes_in += frame.raw_len;
+  source.systems.insert({frame.sysid, frame.compid});
+  if (dedup_.seen_recently(frame.bytes(), now_s)) {
+    ++source.counters.duplicates_in;
+    ++duplicates_;
+    return 0;
+  }
+  const auto [system, component] = target_of(frame);
+  std::size_t sent = 0;
+  for (LinkId id = 0; id < links_.size(); ++id) {
+    Link& link = links_[id];
+    if (id == from && !link.hub) continue;
+    if (!wants(link, system, component)) continue;
+    link.send(frame.bytes(), id == from ? peer : std::nullopt);
+    link.counters.frames_out += 1;
+    link.counters.bytes_out += frame.raw_len;
+    ++sent;
+  }
+  return sent;
+}
+
+void Router::send(LinkId to, std::span<const uint8_t> bytes) {
+  Link& link = links_.at(to);
+  link.send(bytes, std::nullopt);
+  link.counters.frames_out += 1;
+  link.counters.bytes_out += bytes.size();
+}
+
+}  // namespace hitl::router

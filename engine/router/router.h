@@ -1,0 +1,78 @@
+// Routes MAVLink frames between links the way mavlink-router does: a frame goes to every link
+// except the one it came from, unless it names a target (target_system / target_component fields,
+// read from the message's description), in which case only links that have shown that system (and
+// component, when one is named) get it; a target nobody has shown yet goes everywhere, so a first
+// command still reaches a vehicle that has not spoken. Duplicates within the dedup window are
+// dropped. A "hub" link stands for many peers on one socket (the client port): frames from one of
+// its peers go to its other peers too, never back to the sender.
+// Used by `hitl sim` (board <-> clients) and `hitl bridge` (board <-> clients <-> endpoints): one
+// code path for both.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/mavlink/frame.h"
+#include "engine/net/socket_address.h"
+#include "engine/router/dedup.h"
+
+namespace hitl::router {
+
+using LinkId = std::size_t;
+
+/// Sends bytes out of a link; `except` is the peer on a hub link that must not get them back.
+using Sender = std::function<void(std::span<const uint8_t> bytes, const std::optional<net::SocketAddress>& except)>;
+
+struct LinkCounters {
+  uint64_t frames_in = 0;
+  uint64_t bytes_in = 0;
+  uint64_t frames_out = 0;
+  uint64_t bytes_out = 0;
+  uint64_t duplicates_in = 0;  ///< frames that arrived here and had already come another way
+};
+
+/// (target_system, target_component) of a frame; {0, 0} = broadcast (also for messages without
+/// target fields and for ids the message set does not know).
+std::pair<uint8_t, uint8_t> target_of(const mavlink::Frame& frame);
+
+class Router {
+ public:
+  explicit Router(double dedup_window_s = 0.0) : dedup_(dedup_window_s) {}
+
+  LinkId add_link(std::string name, Sender send, bool hub = false);
+  /// A frame arrived on `from` (from peer `peer` of a hub link): learn, dedup, forward.
+  /// Returns how many links it was sent to (0 for a duplicate).
+  std::size_t route(const mavlink::Frame& frame, LinkId from, double now_s,
+                    const std::optional<net::SocketAddress>& peer = std::nullopt);
+  /// Sends our own frame (e.g. the bridge's HEARTBEAT) out of one link, counted.
+  void send(LinkId to, std::span<const uint8_t> bytes);
+
+  const std::string& name(LinkId id) const { return links_.at(id).name; }
+  const LinkCounters& counters(LinkId id) const { return links_.at(id).counters; }
+  /// Systems (sysid, compid) seen arriving on a link.
+  const std::set<std::pair<uint8_t, uint8_t>>& systems(LinkId id) const { return links_.at(id).systems; }
+  std::size_t link_count() const { return links_.size(); }
+  uint64_t duplicates() const { return duplicates_; }
+
+ private:
+  struct Link {
+    std::string name;
+    Sender send;
+    bool hub = false;
+    LinkCounters counters;
+    std::set<std::pair<uint8_t, uint8_t>> systems;
+  };
+  bool wants(const Link& link, uint8_t target_system, uint8_t target_component) const;
+
+  std::vector<Link> links_;
+  DedupWindow dedup_;
+  uint64_t duplicates_ = 0;
+};
+
+}  // namespace hitl::router

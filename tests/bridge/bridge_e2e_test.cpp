@@ -1,0 +1,102 @@
+// hitl bridge end to end against hitl target: commands through its client port, an --endpoint that
+// gets the board's traffic, link health (TIMESYNC round trip, HEARTBEAT age, loss) as JSON, the
+// board going away and coming back without restarting the bridge, and bad input.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+#include <thread>
+
+#include "engine/mavlink/messages.h"
+#include "tests/support/mavlink_peer.h"
+#include "tests/support/process.h"
+
+namespace hitl {
+namespace {
+
+using namespace std::chrono_literals;
+
+std::vector<std::string> board_args(uint16_t hil, uint16_t gcs) {
+  return {test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+          std::to_string(gcs), "--vio-port", "0"};
+}
+
+/// The newest health line of the bridge's JSON output that satisfies `pred`, polling up to `timeout`.
+template <class Pred>
+std::optional<nlohmann::json> health_line(test::Process& bridge, Pred pred, std::chrono::milliseconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < end) {
+    const auto lines = bridge.out_lines();
+    for (auto it = lines.rbegin(); it != lines.rend(); ++it) {
+      auto j = nlohmann::json::parse(*it, nullptr, false);
+      if (!j.is_discarded() && pred(j)) return j;
+    }
+    std::this_thread::sleep_for(200ms);
+  }
+  return std::nullopt;
+}
+
+TEST(BridgeE2E, RoutesCommandsAndEndpointsReportsHealthAndSurvivesTheBoardGoingAway) {
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), local = test::free_udp_port(),
+                 clients = test::free_udp_port(), qgc = test::free_udp_port();
+  auto board = std::make_unique<test::Process>(board_args(hil, gcs));
+  ASSERT_TRUE(board->wait_for_stderr("EMULATED", 10s)) << board->err();
+  test::MavlinkPeer ground_station(qgc, 0, 255, 190);  // a QGroundControl listening on its port
+  test::Process bridge({test::hitl_binary(), "--json", "bridge", "-i", "127.0.0.1", "--port", std::to_string(gcs), "--local-port",
+                        std::to_string(local), "--clients", std::to_string(clients), "--endpoint",
+                        "udp:127.0.0.1:" + std::to_string(qgc), "--duration", "120"});
+  ASSERT_TRUE(bridge.wait_for_stderr("clients on", 10s)) << bridge.err();
+
+  // A command through the bridge's client port, answered by the board.
+  auto shell = test::run_hitl({"--json", "shell", "--session-port", std::to_string(clients), "-c", "qshell dsp_hitl status"});
+  EXPECT_EQ(shell.exit_code, 0) << shell.err;
+  EXPECT_NE(shell.out.find("IMU Section"), std::string::npos) << shell.out;
+
+  // The endpoint gets the board's traffic.
+  bool heartbeat = false;
+  for (const auto& f : ground_station.receive_for(3s)) heartbeat = heartbeat || (f.sysid == 1 && f.is<mavlink::msg::Heartbeat>());
+  EXPECT_TRUE(heartbeat);
+
+  // Health: up, a TIMESYNC round trip, a recent HEARTBEAT, per-source loss, the three links.
+  auto h = health_line(bridge, [](const nlohmann::json& j) { return j["board"] == "up" && !j["rtt_ms"].is_null(); }, 10s);
+  ASSERT_TRUE(h) << bridge.out();
+  EXPECT_LT((*h)["heartbeat_age_s"].get<double>(), 2.0);
+  EXPECT_GT((*h)["rtt_ms"].get<double>(), 0.0);
+  EXPECT_TRUE((*h)["loss"].contains("1/1")) << h->dump();
+  ASSERT_EQ((*h)["links"].size(), 3u);
+  EXPECT_EQ((*h)["links"][0]["name"], "board");
+  EXPECT_GT((*h)["links"][0]["packets_in"].get<uint64_t>(), 0u);
+  EXPECT_GT((*h)["links"][2]["packets_out"].get<uint64_t>(), 0u);  // to the endpoint
+
+  // The board goes away (PX4 killed): said; then it comes back on the same ports: said, and
+  // commands work again through the same bridge.
+  board->signal(SIGKILL);
+  board->wait(5s);
+  EXPECT_TRUE(bridge.wait_for_stderr("board gone", 10s)) << bridge.err();
+  board = std::make_unique<test::Process>(board_args(hil, gcs));
+  ASSERT_TRUE(board->wait_for_stderr("EMULATED", 10s)) << board->err();
+  EXPECT_TRUE(bridge.wait_for_stderr("board back", 15s)) << bridge.err();
+  auto again = test::run_hitl({"shell", "--session-port", std::to_string(clients), "-c", "qshell dsp_hitl status"});
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+
+  bridge.signal(SIGINT);
+  EXPECT_EQ(bridge.wait(10s), 0);
+  board->signal(SIGINT);
+  board->wait(10s);
+}
+
+TEST(BridgeE2E, BadInputIsRefusedWithTheReason) {
+  auto bad = test::run_hitl({"bridge", "--endpoint", "serial:/dev/ttyUSB0", "--duration", "1"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("serial:/dev/ttyUSB0"), std::string::npos) << bad.err;
+  // The client port taken (by a running session or bridge): refused, saying what is likely running.
+  test::MavlinkPeer squatter(0, 0);
+  const uint16_t taken = squatter.endpoint().local_address().port();
+  auto busy = test::run_hitl({"bridge", "--clients", std::to_string(taken), "--local-port", std::to_string(test::free_udp_port()),
+                              "--duration", "1"});
+  EXPECT_EQ(busy.exit_code, 1);
+  EXPECT_NE(busy.err.find("hitl sim or another hitl bridge"), std::string::npos) << busy.err;
+}
+
+}  // namespace
+}  // namespace hitl
