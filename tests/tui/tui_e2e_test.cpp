@@ -1,0 +1,154 @@
+// `hitl sim --tui` end to end: the emulated board (`hitl target --lockstep`) and the simulator with
+// its dashboard inside a detached tmux session of fixed size (120x40); keys go in with send-keys,
+// the screen comes back with capture-pane. Arm, take off, and see the armed state, the rates and
+// the altitude rising; q quits and the terminal shows the summary.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <regex>
+#include <thread>
+
+#include "tests/support/process.h"
+
+namespace hitl {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// tmux's path, or empty when it is not installed.
+std::string tmux_path() {
+  FILE* p = ::popen("command -v tmux 2>/dev/null", "r");
+  if (p == nullptr) return {};
+  char buf[512] = {};
+  const bool got = std::fgets(buf, sizeof buf, p) != nullptr;
+  ::pclose(p);
+  std::string path = got ? buf : "";
+  while (!path.empty() && (path.back() == '\n' || path.back() == '\r')) path.pop_back();
+  return path;
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+/// A private tmux server (its own socket name), so nothing of the user's tmux is touched.
+class Tmux {
+ public:
+  explicit Tmux(std::string path) : path_(std::move(path)), socket_("hitl-tui-e2e-" + std::to_string(::getpid())) {}
+  ~Tmux() { run({"kill-server"}); }
+
+  std::string run(const std::vector<std::string>& args) {
+    std::vector<std::string> argv{path_, "-L", socket_};
+    argv.insert(argv.end(), args.begin(), args.end());
+    test::Process p(argv);
+    p.wait(10s);
+    return p.out();
+  }
+  std::string screen() { return run({"capture-pane", "-p", "-t", "dash"}); }
+  void keys(const std::string& k) { run({"send-keys", "-t", "dash", k}); }
+
+  /// Polls the screen until `done(screen)`, up to `timeout`; the last screen either way.
+  bool until(const std::function<bool(const std::string&)>& done, std::chrono::milliseconds timeout, std::string* last) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+      *last = screen();
+      if (done(*last)) return true;
+      std::this_thread::sleep_for(250ms);
+    }
+    *last = screen();
+    return done(*last);
+  }
+
+ private:
+  std::string path_;
+  std::string socket_;
+};
+
+std::optional<double> number_after(const std::string& screen, const std::string& pattern) {
+  std::smatch m;
+  if (!std::regex_search(screen, m, std::regex(pattern))) return std::nullopt;
+  return std::stod(m[1].str());
+}
+
+TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
+  const std::string tmux_bin = tmux_path();
+  if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port(),
+                 local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+
+  Tmux tmux(tmux_bin);
+  const std::string sim = quoted(test::hitl_binary()) + " sim -i 127.0.0.1 --hil-port " + std::to_string(hil) +
+                          " --local-port " + std::to_string(local) + " --no-vio --clients " + std::to_string(clients) +
+                          " --lockstep --speed 1 --tui; echo HITL_EXIT=$?; sleep 60";
+  tmux.run({"new-session", "-d", "-s", "dash", "-x", "120", "-y", "40", sim});
+
+  std::string s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
+  EXPECT_NE(s.find("hitl sim"), std::string::npos);
+  for (const char* panel : {"dsp_hitl", "EKF", "Vehicle", "Messages", "Link"}) EXPECT_NE(s.find(panel), std::string::npos) << panel;
+
+  // The rates: the IMU path (HIL_SENSOR) measured against its 250 Hz, and the board's dsp_hitl
+  // counters polled through the shell.
+  ASSERT_TRUE(tmux.until(
+      [](const std::string& x) {
+        const auto imu = number_after(x, R"(IMU\s+250\.0\s+([0-9.]+))");
+        const auto dsp = number_after(x, R"(HIL sensor_imu received\s+[0-9]+\s+([0-9.]+))");
+        return imu && *imu > 125.0 && dsp && *dsp > 125.0;
+      },
+      60s, &s))
+      << s;
+
+  // The estimator converges (SYS_STATUS says ready), then arm: a denial is retried.
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(%\s+ready)")); }, 90s, &s)) << s;
+  bool armed = false;
+  for (int attempt = 0; attempt < 5 && !armed; ++attempt) {
+    tmux.keys("a");
+    armed = tmux.until([](const std::string& x) { return x.find("ARMED") != std::string::npos; }, 15s, &s);
+  }
+  ASSERT_TRUE(armed) << s;
+  EXPECT_NE(s.find("armed"), std::string::npos) << s;  // the command's outcome in the messages panel
+
+  // Take off: the estimate's altitude and the truth's rise.
+  const double before_m = number_after(s, R"(alt (-?[0-9.]+) m est)").value_or(0.0);
+  tmux.keys("t");
+  ASSERT_TRUE(tmux.until(
+      [&](const std::string& x) {
+        const auto est = number_after(x, R"(alt (-?[0-9.]+) m est)");
+        const auto truth = number_after(x, R"(, (-?[0-9.]+) m truth)");
+        return est && truth && *est > before_m + 1.0 && *truth > 1.0;
+      },
+      60s, &s))
+      << s;
+  EXPECT_NE(s.find("takeoff accepted"), std::string::npos) << s;
+  EXPECT_TRUE(s.find("taking off") != std::string::npos || s.find("in air") != std::string::npos) << s;
+
+  // q: the dashboard closes, the terminal is given back and the summary printed.
+  tmux.keys("q");
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
+  EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
+  EXPECT_NE(s.find("real-time factor"), std::string::npos) << s;  // print_summary's first line
+  EXPECT_EQ(s.find("Data paths"), std::string::npos) << s;         // the dashboard is gone
+  board.signal(SIGINT);
+  board.wait(10s);
+}
+
+TEST(TuiE2E, WithoutATerminalSaysSoAndFallsBack) {
+  const uint16_t hil = test::free_udp_port();
+  auto r = test::run_hitl({"sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                           std::to_string(test::free_udp_port()), "--no-vio", "--clients", "0", "--duration", "1", "--speed",
+                           "0", "--tui"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("--tui: stdout is not a terminal; showing the status lines instead"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("ended: duration"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace hitl

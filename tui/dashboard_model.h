@@ -1,0 +1,124 @@
+// Everything one frame of the dashboard shows, as plain values (btop's cpu_info): sources fill it
+// from their snapshots (sim_dashboard.h, inspect_dashboard.h), the panels draw it (panels.h).
+// A panel a source cannot fill is absent (nullopt) or carries the reason it is "n/a".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/telemetry/estimator_flags.h"
+#include "engine/telemetry/health.h"
+
+namespace hitl::tui {
+
+using telemetry::Health;
+
+/// One data path of the spec's "Data Flow Rates" table, or one message on an inspected link.
+struct PathRow {
+  std::string name;                ///< "IMU", "GPS", ... or the message name
+  std::string message;             ///< the MAVLink message carrying it
+  bool outgoing = true;            ///< host -> board
+  double expected_hz = 0;          ///< 0: nothing to hold it to
+  double rate_hz = 0;
+  double jitter_ms = 0;            ///< standard deviation of the intervals
+  double max_gap_ms = 0;
+  std::optional<double> loss_pct;  ///< when the host can see it
+  uint64_t count = 0;
+  Health health = Health::Good;
+  std::string note;                ///< replaces the health word: "paused", "stale", ...
+};
+
+struct PathsPanel {
+  std::vector<PathRow> rows;
+  std::string caption;             ///< under the rows when there is room: how to read the rates
+};
+
+struct CounterRow {
+  std::string name;                ///< the status text's label
+  std::string short_name;          ///< for narrow panels
+  uint64_t count = 0;
+  std::optional<double> rate_hz;   ///< none before two polls
+  double expected_hz = 0;
+  bool stalled = false;            ///< stopped incrementing: a red mark
+  Health health = Health::Good;
+};
+
+struct DspHitlPanel {
+  std::optional<std::string> unavailable;  ///< "n/a: <reason>"
+  bool running = false;
+  std::vector<CounterRow> counters;
+  double age_s = -1;               ///< since the last good poll
+};
+
+struct TestRatio {
+  std::string name;                ///< "vel", "pos h", "pos v", "mag"
+  double value = 0;                ///< innovation test ratio; < 1 passes
+};
+
+struct EkfPanel {
+  std::optional<std::string> unavailable;
+  std::vector<telemetry::EstimatorFlag> flags;
+  std::vector<TestRatio> ratios;
+  std::optional<double> horizontal_error_m;  ///< estimate against the simulator's truth
+  std::optional<double> vertical_error_m;
+  std::optional<double> attitude_error_deg;
+  std::optional<double> horizontal_rms_m;
+  std::optional<double> attitude_rms_deg;
+  std::optional<double> horizontal_accuracy_m;  ///< the estimator's own 1-sigma
+  std::optional<double> vertical_accuracy_m;
+  std::string error_note;          ///< why there is no error figure ("no ground truth: not a simulation")
+};
+
+struct VehiclePanel {
+  std::optional<std::string> unavailable;
+  bool armed = false;
+  std::string mode;
+  std::string landed;              ///< "on ground", "in air", ...; empty when not heard
+  bool in_air = false;             ///< disarming now needs a confirmation
+  std::optional<bool> ready_to_arm;
+  std::optional<double> battery_V;
+  std::optional<double> battery_A;
+  std::optional<double> battery_pct;
+  std::optional<double> altitude_m;        ///< the autopilot's estimate above its origin
+  std::optional<double> truth_altitude_m;  ///< the simulator's, above the rest pose
+  std::optional<std::array<double, 4>> motors;             ///< commands 0..1
+  std::optional<std::array<double, 4>> rotor_speed_rad_s;  ///< from the simulator
+  double rotor_max_rad_s = 0;      ///< full scale of the rotor bars
+};
+
+enum class Severity { Info, Notice, Warning, Error };
+
+struct LogLine {
+  double t_s = 0;                  ///< on the dashboard's clock (seconds since it started)
+  Severity severity = Severity::Info;
+  std::string text;
+};
+
+struct LinkField {
+  std::string label;
+  std::string value;
+  Health health = Health::Good;
+};
+
+struct DashboardModel {
+  std::string title;               ///< "hitl sim", "hitl inspect"
+  std::string state;               ///< "running", "PAUSED", ...
+  Health state_health = Health::Good;
+  std::string clock;               ///< "sim 123.4 s"
+  PathsPanel paths;
+  std::optional<DspHitlPanel> dsp_hitl;
+  std::optional<EkfPanel> ekf;
+  std::optional<VehiclePanel> vehicle;
+  std::vector<LogLine> messages;   ///< oldest first
+  std::string link_partner;        ///< the Link panel's title: who is on the other end
+  Health link_health = Health::Good;
+  std::vector<LinkField> link;
+  bool actions = false;            ///< keys act on a vehicle (the footer lists them)
+  bool trajectory_running = false; ///< f then asks whether to stop it
+  std::string busy;                ///< an action in flight, for the footer ("arming ...")
+};
+
+}  // namespace hitl::tui

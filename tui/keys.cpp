@@ -1,0 +1,109 @@
+#include "tui/keys.h"
+
+namespace hitl::tui {
+
+const char* to_string(Action action) {
+  switch (action) {
+    case Action::Arm: return "arm";
+    case Action::Disarm: return "disarm";
+    case Action::ForceDisarm: return "force disarm";
+    case Action::Takeoff: return "takeoff";
+    case Action::Land: return "land";
+    case Action::TogglePause: return "pause/resume";
+    case Action::ResetHome: return "reset to home";
+    case Action::FlyTrajectory: return "fly trajectory";
+    case Action::StopTrajectory: return "stop trajectory";
+    case Action::Shell: return "shell";
+  }
+  return "?";
+}
+
+Dispatcher::Result Dispatcher::start(Action action, const std::string& argument, DashboardActions* actions) {
+  if (actions == nullptr) return {false, std::string(to_string(action)) + ": this dashboard only shows (no vehicle to act on)"};
+  if (auto why = actions->refusal(action)) return {false, std::string(to_string(action)) + ": " + *why};
+  actions->perform(action, argument);
+  return {};
+}
+
+Dispatcher::Result Dispatcher::request(Action action, const DashboardModel& model, DashboardActions* actions) {
+  auto confirm = [&](Action confirmed, std::string question) {
+    if (actions == nullptr || actions->refusal(confirmed)) return start(confirmed, "", actions);  // says why not
+    interaction_ = {Interaction::Mode::Confirm, std::move(question), "", ""};
+    pending_ = confirmed;
+    return Result{};
+  };
+  const bool in_air = model.vehicle && model.vehicle->in_air;
+  const bool armed = model.vehicle && model.vehicle->armed;
+  switch (action) {
+    case Action::Disarm:
+      if (in_air) return confirm(Action::ForceDisarm, "Disarm IN THE AIR? The motors stop and the vehicle falls (forced disarm).");
+      break;
+    case Action::ResetHome:
+      if (armed) return confirm(Action::ResetHome, "Reset to home while ARMED? The vehicle is put back on the ground at home.");
+      break;
+    case Action::FlyTrajectory:
+      if (model.trajectory_running) return confirm(Action::StopTrajectory, "A trajectory is being flown. Stop it?");
+      break;
+    default: break;
+  }
+  return start(action, "", actions);
+}
+
+Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& model, DashboardActions* actions) {
+  if (key.kind == Key::Kind::None || key.kind == Key::Kind::Resize) return {};
+  switch (interaction_.mode) {
+    case Interaction::Mode::Help:
+      interaction_ = {};
+      return {};
+    case Interaction::Mode::Confirm: {
+      const auto action = pending_;
+      interaction_ = {};
+      pending_.reset();
+      if (key.kind == Key::Kind::Char && (key.ch == 'y' || key.ch == 'Y') && action) return start(*action, "", actions);
+      return {false, std::string(action ? to_string(*action) : "action") + ": cancelled"};
+    }
+    case Interaction::Mode::Prompt:
+      switch (key.kind) {
+        case Key::Kind::Escape:
+          interaction_ = {};
+          return {};
+        case Key::Kind::Enter: {
+          std::string line = interaction_.input;
+          interaction_ = {};
+          const auto first = line.find_first_not_of(' ');
+          if (first == std::string::npos) return {};
+          return start(Action::Shell, line.substr(first), actions);
+        }
+        case Key::Kind::Backspace:
+          if (!interaction_.input.empty()) interaction_.input.pop_back();
+          return {};
+        case Key::Kind::Char:
+          if (interaction_.input.size() < kMaxCommandLength) interaction_.input += key.ch;
+          return {};
+        default: return {};
+      }
+    case Interaction::Mode::Normal: break;
+  }
+  if (key.kind != Key::Kind::Char) return {};
+  switch (key.ch) {
+    case 'q': return {true, std::nullopt};
+    case '?':
+    case 'h':
+      interaction_ = {Interaction::Mode::Help, "", "", ""};
+      return {};
+    case 'a': return request(Action::Arm, model, actions);
+    case 'd': return request(Action::Disarm, model, actions);
+    case 't': return request(Action::Takeoff, model, actions);
+    case 'l': return request(Action::Land, model, actions);
+    case 'p': return request(Action::TogglePause, model, actions);
+    case 'r': return request(Action::ResetHome, model, actions);
+    case 'f': return request(Action::FlyTrajectory, model, actions);
+    case 's':
+      if (actions == nullptr || actions->refusal(Action::Shell)) return start(Action::Shell, "", actions);
+      interaction_ = {Interaction::Mode::Prompt, "", "shell (Enter runs, Esc cancels)> ", ""};
+      return {};
+    default: return {};
+  }
+}
+
+}  // namespace hitl::tui

@@ -1,0 +1,45 @@
+// The keyboard: raw input decoded to keys once (the screen does it), then one dispatcher that
+// turns keys into actions (btop's Input::get / Input::process). The dispatcher holds what the
+// keyboard is in the middle of: the help overlay, a confirmation (disarm in the air, reset while
+// armed, stopping a trajectory) or the one-line shell prompt.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "tui/actions.h"
+#include "tui/dashboard_model.h"
+#include "tui/render.h"
+
+namespace hitl::tui {
+
+struct Key {
+  enum class Kind { None, Char, Enter, Escape, Backspace, Resize };
+  Kind kind = Kind::None;
+  char ch = 0;  ///< Char: a printable ASCII character
+  static Key character(char c) { return {Kind::Char, c}; }
+};
+
+class Dispatcher {
+ public:
+  struct Result {
+    bool quit = false;
+    std::optional<std::string> note;  ///< for the messages panel (a refusal, a cancelled question)
+  };
+
+  /// One key, in the state of `model` (in air? a trajectory running?). `actions` may be null
+  /// (a dashboard that only shows): then every action key says so.
+  Result on_key(const Key& key, const DashboardModel& model, DashboardActions* actions);
+  const Interaction& interaction() const { return interaction_; }
+
+  static constexpr std::size_t kMaxCommandLength = 200;
+
+ private:
+  Result request(Action action, const DashboardModel& model, DashboardActions* actions);
+  Result start(Action action, const std::string& argument, DashboardActions* actions);
+
+  Interaction interaction_;
+  std::optional<Action> pending_;  ///< what y confirms
+};
+
+}  // namespace hitl::tui

@@ -1,0 +1,35 @@
+// Where each panel goes for a terminal size. 80x24 is the minimum: two columns (data paths,
+// dsp_hitl and link on the left; vehicle, EKF and messages on the right). From 40 rows the
+// messages take the full width at the bottom; wider panels show more columns and longer bars
+// (each panel decides from its own width). A source without vehicle panels (inspect) gets the
+// data paths across the top, then link, then messages.
+#pragma once
+
+#include "tui/dashboard_model.h"
+#include "tui/screen.h"
+
+namespace hitl::tui {
+
+inline constexpr int kMinWidth = 80;
+inline constexpr int kMinHeight = 24;
+/// From this many rows, messages span the whole width at the bottom.
+inline constexpr int kTallHeight = 40;
+/// A panel at least this wide inside shows its extra columns.
+inline constexpr int kWidePanel = 56;
+
+struct Layout {
+  bool too_small = false;
+  Rect header, footer;
+  Rect paths, dsp_hitl, link, vehicle, ekf, messages;  ///< empty when the panel is not shown
+};
+
+/// Rows each panel needs for its content (borders included), given the model.
+int paths_height(const DashboardModel& model, bool wide);
+int dsp_hitl_height(bool wide);
+int link_height(const DashboardModel& model, int width);
+inline constexpr int kVehicleHeight = 9;
+int ekf_height(bool wide);
+
+Layout layout_for(int width, int height, const DashboardModel& model);
+
+}  // namespace hitl::tui

@@ -1,0 +1,22 @@
+// One draw function per panel (btop's draw(const cpu_info&, ...)): each draws its part of the
+// model inside its rectangle, box included, and nothing else; none touches a socket or a session.
+#pragma once
+
+#include <vector>
+
+#include "tui/dashboard_model.h"
+#include "tui/screen.h"
+
+namespace hitl::tui {
+
+void draw_paths(Screen& screen, const Rect& r, const PathsPanel& panel);
+void draw_dsp_hitl(Screen& screen, const Rect& r, const DspHitlPanel& panel);
+void draw_ekf(Screen& screen, const Rect& r, const EkfPanel& panel);
+void draw_vehicle(Screen& screen, const Rect& r, const VehiclePanel& panel);
+void draw_messages(Screen& screen, const Rect& r, const std::vector<LogLine>& lines);
+void draw_link(Screen& screen, const Rect& r, const std::string& partner, Health health, const std::vector<LinkField>& fields);
+
+/// "n/a: <reason>", wrapped inside a panel's box (for any panel a source cannot fill).
+void draw_unavailable(Screen& screen, const Rect& inner, const std::string& reason);
+
+}  // namespace hitl::tui

@@ -1,0 +1,100 @@
+#include "tui/render.h"
+
+#include "tui/draw.h"
+#include "tui/layout.h"
+#include "tui/panels.h"
+
+namespace hitl::tui {
+namespace {
+
+constexpr const char* kKeyHints = "a:arm d:disarm t:takeoff l:land p:pause r:reset f:fly s:shell ?:help q:quit";
+constexpr const char* kViewHints = "?:help q:quit";
+
+/// The help overlay's lines: the keys, then what the colours mean.
+const char* const kHelp[] = {
+    "a  arm                    d  disarm (asks first in the air)",
+    "t  take off               l  land",
+    "p  pause / resume         r  reset to home (asks when armed)",
+    "f  fly the -t trajectory  s  one shell command",
+    "?  this help              q  quit",
+    "",
+    "Rates: green within 5 % of expected, yellow 5-20 %,",
+    "red worse or stale. Test ratios: red from 1 (rejected).",
+    "Without colours the words ok / warn / bad / STOP say it.",
+    "",
+    "Keys act through the session's client port, as hitl arm,",
+    "hitl fly and hitl shell do from another terminal.",
+    "Any key closes this help."};
+
+void draw_header(Screen& screen, const Rect& r, const DashboardModel& m) {
+  int x = r.x;
+  auto cell = [&](const std::string& text, Style style = {}) {
+    put(screen, r, x, r.y, text, style);
+    x += static_cast<int>(text.size());
+  };
+  cell(" " + m.title + " ", {Color::Accent, true, true});
+  cell(" ");
+  cell(m.state, health_style(m.state_health));
+  cell("  " + m.clock);
+  // Right-aligned in what is left: an action in flight, else the two keys everyone needs.
+  std::string hint = m.busy.empty() ? kViewHints : m.busy;
+  const int room = r.x + r.w - x - 3;
+  if (room < 4) return;
+  if (static_cast<int>(hint.size()) > room) hint = "..." + hint.substr(hint.size() - static_cast<std::size_t>(room - 3));
+  put(screen, r, r.x + r.w - static_cast<int>(hint.size()) - 1, r.y, hint, m.busy.empty() ? Style{Color::Dim, false, false} : Style{Color::Accent, true, false});
+}
+
+void draw_footer(Screen& screen, const Rect& r, const DashboardModel& m, const Interaction& in) {
+  switch (in.mode) {
+    case Interaction::Mode::Confirm:
+      put(screen, r, r.x, r.y, fit(in.question + "  [y/N]", r.w), {Color::Warning, true, true});
+      return;
+    case Interaction::Mode::Prompt: {
+      const std::string line = in.label + in.input;
+      // Keep the end of a long line in view (the cursor is there).
+      const std::string shown = static_cast<int>(line.size()) + 2 > r.w ? line.substr(line.size() + 2 - static_cast<std::size_t>(r.w)) : line;
+      put(screen, r, r.x, r.y, fit(shown + "_", r.w), {Color::Accent, true, false});
+      return;
+    }
+    case Interaction::Mode::Normal:
+    case Interaction::Mode::Help:
+      put(screen, r, r.x, r.y, fit(m.actions ? kKeyHints : kViewHints, r.w), {Color::Dim, false, false});
+      return;
+  }
+}
+
+void draw_help(Screen& screen) {
+  const int w = 64, h = static_cast<int>(std::size(kHelp)) + 2;
+  const Rect box{(screen.width() - w) / 2, (screen.height() - h) / 2, w, h};
+  const Rect in = box.inner();
+  for (int y = box.y; y < box.y + box.h; ++y) put(screen, box, box.x, y, std::string(static_cast<std::size_t>(w), ' '));
+  screen.box(box, "Keys and colours", {Color::Accent, true, false});
+  int y = in.y;
+  for (const char* line : kHelp) put(screen, in, in.x + 1, y++, line);
+}
+
+}  // namespace
+
+void render(Screen& screen, const DashboardModel& model, const Interaction& interaction) {
+  screen.clear();
+  const Layout l = layout_for(screen.width(), screen.height(), model);
+  if (l.too_small) {
+    const std::string text = format("terminal %dx%d: the dashboard needs %dx%d", screen.width(), screen.height(), kMinWidth, kMinHeight);
+    screen.text(0, 0, text.substr(0, static_cast<std::size_t>(std::max(0, screen.width()))), {Color::Bad, true, false});
+    screen.text(0, 1, std::string("q quits").substr(0, static_cast<std::size_t>(std::max(0, screen.width()))));
+    screen.flush();
+    return;
+  }
+  draw_header(screen, l.header, model);
+  if (!l.paths.empty()) draw_paths(screen, l.paths, model.paths);
+  if (!l.dsp_hitl.empty() && model.dsp_hitl) draw_dsp_hitl(screen, l.dsp_hitl, *model.dsp_hitl);
+  if (!l.vehicle.empty() && model.vehicle) draw_vehicle(screen, l.vehicle, *model.vehicle);
+  if (!l.ekf.empty() && model.ekf) draw_ekf(screen, l.ekf, *model.ekf);
+  if (!l.link.empty()) draw_link(screen, l.link, model.link_partner, model.link_health, model.link);
+  if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages);
+  draw_footer(screen, l.footer, model, interaction);
+  if (interaction.mode == Interaction::Mode::Help) draw_help(screen);
+  screen.flush();
+}
+
+}  // namespace hitl::tui

@@ -1,0 +1,23 @@
+// One whole frame: header, the panels where the layout puts them, the footer (key hints, or the
+// question or prompt being answered), and the help overlay. Composed on the screen, flushed once.
+#pragma once
+
+#include <string>
+
+#include "tui/dashboard_model.h"
+#include "tui/screen.h"
+
+namespace hitl::tui {
+
+/// What the keyboard is in the middle of (keys.h drives it).
+struct Interaction {
+  enum class Mode { Normal, Help, Confirm, Prompt };
+  Mode mode = Mode::Normal;
+  std::string question;  ///< Confirm: what y will do
+  std::string label;     ///< Prompt: "shell> "
+  std::string input;     ///< Prompt: typed so far
+};
+
+void render(Screen& screen, const DashboardModel& model, const Interaction& interaction);
+
+}  // namespace hitl::tui

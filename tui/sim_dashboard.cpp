@@ -1,0 +1,240 @@
+#include "tui/sim_dashboard.h"
+
+#include <cmath>
+#include <numeric>
+
+#include "engine/vehicle/patient_link.h"
+#include "target/core/hil_split.h"
+#include "tui/collect.h"
+#include "tui/draw.h"
+
+namespace hitl::tui {
+namespace {
+
+vehicle::OperatorCommand command_for(Action a) {
+  switch (a) {
+    case Action::Arm: return vehicle::OperatorCommand::Arm;
+    case Action::Disarm: return vehicle::OperatorCommand::Disarm;
+    case Action::ForceDisarm: return vehicle::OperatorCommand::ForceDisarm;
+    case Action::Takeoff: return vehicle::OperatorCommand::Takeoff;
+    case Action::Land: return vehicle::OperatorCommand::Land;
+    case Action::TogglePause:
+    case Action::ResetHome:
+    case Action::FlyTrajectory:
+    case Action::StopTrajectory:
+    case Action::Shell: break;
+  }
+  return vehicle::OperatorCommand::Arm;  // not reached: perform() routes only the five above here
+}
+
+/// The board's dsp_hitl counters at real time: the spec's split (hil_sensor_imu 250 Hz,
+/// hil_sensor_mag_baro 100 Hz) and the simulator's mag and baro rates.
+telemetry::DspHitlExpectedRates dsp_hitl_rates(const hil::SessionConfig& c) {
+  const target::HilSplitConfig split;
+  telemetry::DspHitlExpectedRates r;
+  r.imu_received_hz = 1e6 / static_cast<double>(split.imu_period_us);
+  r.imu_published_hz = r.imu_received_hz;
+  r.mag_baro_received_hz = 1e6 / static_cast<double>(split.mag_baro_period_us);
+  r.mag_published_hz = c.vehicle.sensors.mag.rate_hz;
+  r.baro_published_hz = c.vehicle.sensors.baro.rate_hz;
+  return r;
+}
+
+}  // namespace
+
+SimDashboard::SimDashboard(hil::Session& session, const hil::SessionConfig& config, SimDashboardConfig dashboard)
+    : session_(session), config_(config), dashboard_(std::move(dashboard)) {
+  log_.add(Severity::Info, "hitl sim: " + session_.describe() + "; ? for the keys");
+  if (config_.clients_port == 0) {
+    log_.add(Severity::Warning, "--clients 0: no client port, so the dashboard cannot reach the board (vehicle, EKF, "
+                                "dsp_hitl and the keys that act are off)");
+    return;
+  }
+  const auto link = vehicle::session_client_options(config_.clients_port);
+  feed_ = std::make_unique<vehicle::TelemetryFeed>(
+      link, vehicle::dashboard_streams(),
+      [this](mavlink::MavSeverity s, const std::string& text) { log_.add(severity_from_mavlink(static_cast<uint8_t>(s)), text); }, config_.sysid);
+  shell_ = std::make_unique<vehicle::ShellPoller>(
+      link, dsp_hitl_rates(config_), 1.0, [this](const std::string& command, bool ok, const std::string& output) {
+        log_.add(Severity::Notice, "shell> " + command);
+        if (ok) log_.add_lines(Severity::Info, output);
+        else log_.add(Severity::Error, output);
+      });
+  commands_ = std::make_unique<vehicle::CommandWorker>(
+      link, [this](vehicle::OperatorCommand, bool ok, const std::string& text) { log_.add(ok ? Severity::Notice : Severity::Error, text); });
+}
+
+SimDashboard::~SimDashboard() { shutdown(); }
+
+void SimDashboard::shutdown() {
+  trajectory_.stop();
+  if (commands_) commands_->stop();
+  if (shell_) shell_->stop();
+  if (feed_) feed_->stop();
+}
+
+void SimDashboard::on_event(const hil::SessionEvent& event) {
+  const Severity s = event.severity == hil::Severity::Error ? Severity::Error
+                     : event.severity == hil::Severity::Warning ? Severity::Warning : Severity::Info;
+  log_.add(s, event.text);
+}
+
+void SimDashboard::mark_finished(const std::string& why) {
+  std::lock_guard<std::mutex> lock(finished_mutex_);
+  finished_ = why;
+}
+
+std::optional<std::string> SimDashboard::finished() {
+  std::lock_guard<std::mutex> lock(finished_mutex_);
+  return finished_;
+}
+
+std::optional<std::string> SimDashboard::link_refusal() const {
+  if (!feed_) return "no client port (--clients 0): the dashboard cannot reach the board";
+  const auto f = feed_->snapshot();
+  if (!f.connected) return "no autopilot yet (" + f.link + ")";
+  return std::nullopt;
+}
+
+std::optional<std::string> SimDashboard::refusal(Action action) const {
+  switch (action) {
+    case Action::TogglePause:
+    case Action::ResetHome: return std::nullopt;
+    case Action::StopTrajectory:
+      if (!trajectory_.running()) return "no trajectory is being flown";
+      return std::nullopt;
+    case Action::FlyTrajectory:
+      if (dashboard_.trajectory_file.empty()) return "no trajectory file: start hitl sim --tui with -t FILE.json";
+      if (dashboard_.hitl_binary.empty()) return "cannot find the hitl program to run `hitl fly trajectory`";
+      return link_refusal();
+    case Action::Arm:
+    case Action::Disarm:
+    case Action::ForceDisarm:
+    case Action::Takeoff:
+    case Action::Land:
+      if (auto why = link_refusal()) return why;
+      if (commands_->pending() >= 3) return "three commands are already waiting for their ACK";
+      return std::nullopt;
+    case Action::Shell: return link_refusal();
+  }
+  return std::nullopt;
+}
+
+void SimDashboard::perform(Action action, const std::string& argument) {
+  switch (action) {
+    case Action::TogglePause: session_.set_paused(!session_.snapshot().paused); return;
+    case Action::ResetHome: session_.request_reset(); return;
+    case Action::Shell: shell_->run_command(argument); return;
+    case Action::StopTrajectory:
+      log_.add(Severity::Notice, "stopping the trajectory (SIGINT to hitl fly)");
+      trajectory_.stop();
+      return;
+    case Action::FlyTrajectory: {
+      const std::string port = std::to_string(config_.clients_port);
+      // Through the session's client port, as an operator would from another terminal.
+      const std::vector<std::string> argv = {dashboard_.hitl_binary, "fly",     "--session-port", port, "-i", "127.0.0.1", "--port",
+                                             port,                  "trajectory", dashboard_.trajectory_file, "--mode",
+                                             dashboard_.trajectory_mode};
+      log_.add(Severity::Notice, "f: hitl fly trajectory " + dashboard_.trajectory_file + " through 127.0.0.1:" + port);
+      trajectory_flying_.store(true);
+      auto started = trajectory_.start(
+          argv, [this](const std::string& line) { log_.add(Severity::Info, line); },
+          [this](int code, const std::string& out) {
+            log_.add_lines(code == 0 ? Severity::Notice : Severity::Error, out);
+            log_.add(code == 0 ? Severity::Notice : Severity::Error,
+                     "hitl fly trajectory ended: " + std::string(code == 0 ? "done" : "exit " + std::to_string(code)));
+          });
+      if (!started) log_.add(Severity::Error, "f: " + started.error().message);
+      return;
+    }
+    case Action::Arm:
+    case Action::Disarm:
+    case Action::ForceDisarm:
+    case Action::Takeoff:
+    case Action::Land:
+      log_.add(Severity::Info, std::string(to_string(action)) + " ...");
+      commands_->submit(command_for(action));
+      return;
+  }
+}
+
+DashboardModel SimDashboard::collect() {
+  const hil::SessionSnapshot s = session_.snapshot();
+  DashboardModel m;
+  m.title = "hitl sim";
+  m.actions = true;
+  const double pace = s.speed > 0 ? s.speed : (s.recent_real_time_factor > 0 ? s.recent_real_time_factor : 1.0);
+  if (s.paused) {
+    m.state = "PAUSED";
+    m.state_health = Health::Degraded;
+  } else if (!s.connected) {
+    m.state = "no answer from the flight stack";
+    m.state_health = Health::Bad;
+  } else {
+    m.state = "running";
+  }
+  m.clock = format("sim %.1f s  rtf %.2f", s.sim_time_s, s.recent_real_time_factor);
+  const std::string pace_text = s.speed > 0 ? format("--speed %g", s.speed) : "the measured real-time factor";
+  m.paths = paths_from(s.paths, s.paused,
+                       "expected at " + pace_text + (s.lockstep ? ", lockstep" : "") + "; loss: frames from the board");
+
+  // The truth's altitude above the rest pose (the vehicle starts at rest at home).
+  if (!rest_altitude_m_ && s.steps > 0) rest_altitude_m_ = s.altitude_m;
+
+  if (feed_) {
+    const auto f = feed_->snapshot();
+    m.ekf = ekf_from(f);
+    m.vehicle = vehicle_from(f);
+    m.dsp_hitl = dsp_hitl_from(shell_->dsp_hitl(), pace);
+    if (commands_->pending() > 0) m.busy = "command in flight";
+  } else {
+    const std::string why = "no client port (--clients 0)";
+    m.ekf = EkfPanel{};
+    m.ekf->unavailable = why;
+    m.vehicle = VehiclePanel{};
+    m.vehicle->unavailable = why;
+    m.vehicle->armed = s.armed;
+    m.dsp_hitl = DspHitlPanel{};
+    m.dsp_hitl->unavailable = why;
+  }
+  if (m.vehicle->landed.empty()) m.vehicle->in_air = !s.on_ground;  // the autopilot has not said: the truth
+  m.vehicle->motors = s.motor_commands;
+  m.vehicle->rotor_speed_rad_s = s.rotor_speed_rad_s;
+  for (const auto& r : config_.vehicle.rotors) m.vehicle->rotor_max_rad_s = std::max(m.vehicle->rotor_max_rad_s, r.max_rot_velocity_rad_s);
+  if (rest_altitude_m_) m.vehicle->truth_altitude_m = s.altitude_m - *rest_altitude_m_;
+
+  m.trajectory_running = trajectory_.running();
+  if (m.trajectory_running) m.busy = "flying " + dashboard_.trajectory_file;
+  m.messages = log_.lines();
+
+  auto sum = [](const std::map<std::string, hil::StreamCount>& streams) {
+    uint64_t n = 0;
+    for (const auto& [name, c] : streams) n += c.count;
+    return n;
+  };
+  auto count = [](uint64_t n) { return std::to_string(n); };
+  m.link_partner = s.partner.empty() ? "" : s.partner + (s.connected ? "" : " (no answer)");
+  m.link_health = s.connected ? Health::Good : Health::Bad;
+  auto flag = [](uint64_t n) { return n > 0 ? Health::Degraded : Health::Good; };
+  const uint64_t ignored = s.ignored_other_address + s.ignored_other_sysid;
+  // The first eight fit 80x24; wider terminals show them all.
+  m.link = {
+      {"rtf", format("%.2f", s.recent_real_time_factor)},
+      {"late", count(s.late_ticks), flag(s.late_ticks)},
+      {"out", count(sum(s.sent))},
+      {"in", count(sum(s.received))},
+      {"ignored", count(ignored), flag(ignored)},
+      {"clamped", count(s.actuator_clamped), flag(s.actuator_clamped)},
+      {"crc err", count(s.crc_errors + s.parse_errors), flag(s.crc_errors + s.parse_errors)},
+      {"lockstep", s.lockstep ? count(s.lockstep_fallbacks) + " fb" : "off", flag(s.lockstep_fallbacks)},
+      {"avg rtf", format("%.2f", s.real_time_factor)},
+      {"max late", format("%.1f ms", s.max_lateness_ms)},
+      {"clients", count(s.clients)},
+      {"routed", count(s.routed_to_board) + "/" + count(s.routed_to_clients)},
+      {"act timeout", count(s.actuator_timeouts), flag(s.actuator_timeouts)},
+      {"resets", count(s.resets)},
+  };
+  return m;
+}
+
+}  // namespace hitl::tui

@@ -1,0 +1,68 @@
+// `hitl sim --tui`: the session's snapshots (data paths, truth, rotors, link), the vehicle's
+// telemetry and the board's dsp_hitl counters read through the session's own client port (three
+// client links, each on its own thread: telemetry, shell, commands), and the keys' actions:
+// arm/disarm/takeoff/land through the command client, pause/resume and reset on the session,
+// `f` runs `hitl fly trajectory FILE` through the client port, `s` one shell command.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "engine/hil/session.h"
+#include "engine/vehicle/command_worker.h"
+#include "engine/vehicle/shell_poller.h"
+#include "engine/vehicle/telemetry_feed.h"
+#include "tui/command_runner.h"
+#include "tui/dashboard.h"
+#include "tui/message_log.h"
+
+namespace hitl::tui {
+
+struct SimDashboardConfig {
+  std::string trajectory_file;  ///< -t FILE for `f` (empty: `f` says how to give one)
+  std::string trajectory_mode = "velocity";  ///< --trajectory-mode, passed on as `fly trajectory --mode`
+  std::string hitl_binary;      ///< the program `f` runs (own_executable())
+};
+
+class SimDashboard : public DashboardSource, public DashboardActions, public hil::Session::Observer {
+ public:
+  /// Starts the client-port threads (none with --clients 0: the vehicle panels then say why).
+  SimDashboard(hil::Session& session, const hil::SessionConfig& config, SimDashboardConfig dashboard);
+  ~SimDashboard() override;
+
+  // DashboardSource
+  DashboardModel collect() override;
+  std::optional<std::string> finished() override;
+  void note(Severity severity, const std::string& text) override { log_.add(severity, text); }
+  // DashboardActions
+  std::optional<std::string> refusal(Action action) const override;
+  void perform(Action action, const std::string& argument) override;
+  // hil::Session::Observer (called on the session's thread)
+  void on_event(const hil::SessionEvent& event) override;
+
+  /// The session's run ended: the dashboard closes with `why`.
+  void mark_finished(const std::string& why);
+  /// Stops the client threads and a trajectory in flight (before the session's sockets close).
+  void shutdown();
+
+ private:
+  std::optional<std::string> link_refusal() const;
+
+  hil::Session& session_;
+  hil::SessionConfig config_;
+  SimDashboardConfig dashboard_;
+  MessageLog log_;
+  std::unique_ptr<vehicle::TelemetryFeed> feed_;
+  std::unique_ptr<vehicle::ShellPoller> shell_;
+  std::unique_ptr<vehicle::CommandWorker> commands_;
+  CommandRunner trajectory_;
+  std::atomic<bool> trajectory_flying_{false};
+  std::optional<double> rest_altitude_m_;  ///< the truth's altitude at rest (first snapshot)
+  mutable std::mutex finished_mutex_;
+  std::optional<std::string> finished_;
+};
+
+}  // namespace hitl::tui
