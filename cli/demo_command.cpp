@@ -1,0 +1,218 @@
+// hitl demo: the first thing a newcomer runs. An emulated board (in this process, on free
+// loopback ports) and the simulator in lockstep fly docs/examples/square.json (takeoff, a 5 m
+// square, land), then a short report: tracking error, rates achieved, the board's estimate
+// against the simulator's truth. No board, no network, no configuration. Ctrl-C stops it all.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <thread>
+
+#include "cli/commands.h"
+#include "engine/hil/session.h"
+#include "engine/model/x500_defaults.h"
+#include "engine/net/udp_endpoint.h"
+#include "engine/vehicle/telemetry_feed.h"
+#include "engine/vehicle/trajectory.h"
+#include "target/emulator/board.h"
+
+namespace hitl::cli {
+
+extern const char* const kSquareTrajectory;  // docs/examples/square.json, compiled in
+
+namespace {
+
+struct DemoOptions {
+  std::string trajectory_file;  ///< empty: the compiled-in square
+  double speed = 0;             ///< 0: as fast as lockstep allows
+  vehicle::StickMode mode = vehicle::StickMode::Velocity;
+};
+
+/// A loopback UDP port nobody uses right now (the OS picks it).
+Expected<uint16_t> free_port() {
+  net::UdpEndpoint::Config c;
+  c.bind_address = "127.0.0.1";
+  c.name = "a free loopback port";
+  auto ep = net::UdpEndpoint::open(c);
+  if (!ep) return ep.error();
+  return ep->local_address().port();
+}
+
+class BoardEvents : public target::Board::Observer {
+ public:
+  explicit BoardEvents(const GlobalOptions& g) : g_(g) {}
+  void on_event(const target::BoardEvent& e) override {
+    if (e.warning || g_.verbosity > 0) std::cerr << "hitl demo: board: " << e.text << '\n';
+  }
+
+ private:
+  const GlobalOptions& g_;
+};
+
+class SessionEvents : public hil::Session::Observer {
+ public:
+  explicit SessionEvents(const GlobalOptions& g) : g_(g) {}
+  void on_event(const hil::SessionEvent& e) override {
+    if (e.severity != hil::Severity::Info || !g_.quiet) std::cerr << "hitl demo: " << e.text << '\n';
+  }
+  void on_status(const hil::SessionSnapshot& s) override {
+    if (g_.quiet || g_.json) return;
+    char line[160];
+    std::snprintf(line, sizeof line, "hitl demo: t %5.1f s  %-10s alt %5.2f m  %s", s.sim_time_s, s.trajectory_state.c_str(),
+                  s.altitude_m, s.armed ? "armed" : "disarmed");
+    std::cerr << line << '\n';
+  }
+
+ private:
+  const GlobalOptions& g_;
+};
+
+double per_sim_second(const std::map<std::string, hil::StreamCount>& counts, const char* name, double sim_s) {
+  const auto it = counts.find(name);
+  return it == counts.end() || sim_s <= 0 ? 0.0 : static_cast<double>(it->second.count) / sim_s;
+}
+
+int run_demo(const GlobalOptions& g, const DemoOptions& o) {
+  auto trajectory = o.trajectory_file.empty() ? vehicle::Trajectory::parse(kSquareTrajectory, "docs/examples/square.json")
+                                              : vehicle::Trajectory::load(o.trajectory_file);
+  if (!trajectory) {
+    log_error("demo", trajectory.error().message);
+    return kExitUsage;
+  }
+  // Free loopback ports for the board's instances and the simulator, so a demo never collides
+  // with a real session; the clients port is the usual one when free, so `hitl arm` etc. work.
+  target::BoardConfig board_config;
+  board_config.bind_address = "127.0.0.1";
+  board_config.lockstep = true;
+  hil::SessionConfig session;
+  for (uint16_t* port : {&board_config.hil_port, &board_config.gcs_port, &board_config.vio_port, &session.local_port}) {
+    auto p = free_port();
+    if (!p) {
+      log_error("demo", p.error().message);
+      return kExitFailed;
+    }
+    *port = *p;
+  }
+  session.target_ip = "127.0.0.1";
+  session.bind_address = "127.0.0.1";
+  session.hil_port = board_config.hil_port;
+  session.vio_port = board_config.vio_port;
+  session.lockstep = true;
+  session.speed = o.speed;
+  session.vehicle = model::x500_vehicle_config();
+  session.world = model::default_world_config();
+  session.trajectory = std::move(trajectory.value());
+  session.trajectory_mode = o.mode;
+  {
+    net::UdpEndpoint::Config c;
+    c.bind_address = session.clients_bind;
+    c.bind_port = session.clients_port;
+    if (!net::UdpEndpoint::open(c)) {  // a session or bridge already there: keep out of its way
+      auto p = free_port();
+      if (!p) {
+        log_error("demo", p.error().message);
+        return kExitFailed;
+      }
+      session.clients_port = *p;
+    }
+  }
+
+  auto board = target::Board::create(board_config);
+  if (!board) {
+    log_error("demo", board.error().message);
+    return kExitFailed;
+  }
+  auto sim = hil::Session::create(session);
+  if (!sim) {
+    log_error("demo", sim.error().message);
+    return kExitFailed;
+  }
+  log_info(g, "hitl demo: an emulated VOXL2 board (not PX4) and the Simbody x500 in lockstep, flying " +
+                  (o.trajectory_file.empty() ? std::string("docs/examples/square.json") : o.trajectory_file) +
+                  "; clients on 127.0.0.1:" + std::to_string(session.clients_port) + " (Ctrl-C stops everything)");
+
+  const auto& stop = stop_flag_on_signals();
+  std::atomic<bool> stop_board{false};
+  BoardEvents board_events(g);
+  std::thread board_thread([&] { (void)(*board)->run(stop_board, board_events); });
+
+  // The estimate against the truth, as any client of the session sees it.
+  vehicle::LinkOptions link;
+  link.connect = "udp:127.0.0.1:" + std::to_string(session.clients_port);
+  link.local_port = 0;
+  vehicle::TelemetryFeed feed(link, vehicle::dashboard_streams(), [](mavlink::MavSeverity, const std::string&) {},
+                              hil::kSimulatorSystemId);
+
+  SessionEvents events(g);
+  auto end = (*sim)->run(stop, events);
+  const auto estimate = feed.snapshot();
+  feed.stop();
+  stop_board = true;
+  board_thread.join();
+  if (!end) {
+    log_error("demo", end.error().message);
+    return kExitFailed;
+  }
+  const auto s = (*sim)->snapshot();
+  const auto b = (*board)->snapshot();
+  const bool done = *end == hil::Session::EndReason::TrajectoryDone;
+  const double sim_s = s.sim_time_s;
+  const auto& err = estimate.estimate_error;
+  if (g.json) {
+    print_json_line({{"type", "demo"},
+                     {"ok", done},
+                     {"end", *end == hil::Session::EndReason::Stopped ? "stopped" : done ? "trajectory_done" : "trajectory_failed"},
+                     {"trajectory", {{"state", s.trajectory_state}, {"failure", s.trajectory_failure},
+                                     {"rms_m", s.trajectory_rms_m}, {"max_m", s.trajectory_max_m},
+                                     {"samples", s.trajectory_samples}}},
+                     {"sim_time_s", sim_s},
+                     {"wall_time_s", s.wall_time_s},
+                     {"rates_hz", {{"HIL_SENSOR", per_sim_second(s.sent, "HIL_SENSOR", sim_s)},
+                                   {"HIL_GPS", per_sim_second(s.sent, "HIL_GPS", sim_s)},
+                                   {"ODOMETRY", per_sim_second(s.sent, "ODOMETRY", sim_s)},
+                                   {"HIL_ACTUATOR_CONTROLS", per_sim_second(s.received, "HIL_ACTUATOR_CONTROLS", sim_s)}}},
+                     {"estimate_error", {{"horizontal_rms_m", err.horizontal_rms_m}, {"attitude_rms_deg", err.attitude_rms_deg},
+                                         {"position_samples", err.position_samples},
+                                         {"attitude_samples", err.attitude_samples}}},
+                     {"board", {{"hil_sensor_received", b.hil_sensor_received}, {"hil_gps_received", b.hil_gps_received},
+                                {"odometry_received", b.odometry_received}, {"actuators_sent", b.actuators_sent},
+                                {"malformed", b.malformed}}}});
+  } else {
+    char text[1024];
+    std::snprintf(text, sizeof text,
+                  "\n%s: %s%s\n"
+                  "  tracking error against truth   RMS %.2f m, max %.2f m (%llu samples)\n"
+                  "  rates (per simulated second)    HIL_SENSOR %.0f Hz, HIL_GPS %.0f Hz, ODOMETRY %.0f Hz, "
+                  "HIL_ACTUATOR_CONTROLS back %.0f Hz\n"
+                  "  estimate vs truth               horizontal RMS %.2f m, attitude RMS %.2f deg\n"
+                  "  simulated %.1f s in %.1f s of wall time; board: %llu HIL_SENSOR, %llu malformed\n",
+                  done ? "demo flown" : "demo did not finish", s.trajectory_state.c_str(),
+                  s.trajectory_failure.empty() ? "" : (" (" + s.trajectory_failure + ")").c_str(), s.trajectory_rms_m,
+                  s.trajectory_max_m, static_cast<unsigned long long>(s.trajectory_samples),
+                  per_sim_second(s.sent, "HIL_SENSOR", sim_s), per_sim_second(s.sent, "HIL_GPS", sim_s),
+                  per_sim_second(s.sent, "ODOMETRY", sim_s), per_sim_second(s.received, "HIL_ACTUATOR_CONTROLS", sim_s),
+                  err.horizontal_rms_m, err.attitude_rms_deg, sim_s, s.wall_time_s,
+                  static_cast<unsigned long long>(b.hil_sensor_received), static_cast<unsigned long long>(b.malformed));
+    std::cout << text << "Next: README.md (a real board, PX4 SITL, the other commands).\n";
+  }
+  return done ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state) {
+  auto o = std::make_shared<DemoOptions>();
+  auto* sub = app.add_subcommand(
+      "demo", "Fly the x500 on an emulated board with no hardware: take off, fly a 5 m square, land; then a report");
+  sub->add_option("-t,--trajectory", o->trajectory_file, "Another trajectory file (default: docs/examples/square.json, built in)")
+      ->check(CLI::ExistingFile)->type_name("FILE.json");
+  sub->add_option("--speed", o->speed, "Real-time factor; 0: as fast as lockstep allows")->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--trajectory-mode", o->mode, "velocity (Position mode) or attitude (Stabilized)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
+                                                                                  {"attitude", vehicle::StickMode::Attitude}}))
+      ->default_str("velocity");
+  sub->footer("Exit: 0 when the trajectory was flown and the vehicle landed and disarmed, 1 otherwise.");
+  sub->callback([&options, &state, o]() { state.exit_code = run_demo(options, *o); });
+}
+
+}  // namespace hitl::cli
