@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/value_types.h"
 #include "engine/mavlink/dialect_xml.h"
 
 namespace hitl::cli {
@@ -21,7 +22,9 @@ void add_global_options(CLI::App& app, GlobalOptions& options) {
                  "$HITL_MAVLINK_DIALECT (':'-separated)")
       ->group("MAVLink")
       ->type_name("FILE.xml");
-  app.set_config("--config", "", "Read options from a TOML file ([inspect] port = 14570, ...)")->group("Config");
+  app.set_config("--config", "", "Read options from a TOML file ([inspect] port = 14570, ...; docs/config.md)")
+      ->type_name(value_type::kConfigFile)
+      ->group("Config");
   app.allow_config_extras(false);  // a misspelt key is an error naming it, not silently ignored
 }
 

@@ -1,5 +1,7 @@
 // hitl inspect: decode and measure MAVLink on a port, a connection or a .tlog.
+#include <atomic>
 #include <iostream>
+#include <thread>
 #include <map>
 #include <memory>
 #include <optional>
@@ -8,10 +10,14 @@
 #include "cli/commands.h"
 #include "engine/mavlink/enums.h"
 #include "cli/traffic_table.h"
+#include "cli/value_types.h"
 #include "engine/inspect/expectations.h"
 #include "engine/inspect/inspector.h"
 #include "engine/mavlink/field_format.h"
 #include "engine/telemetry/traffic_json.h"
+#include "tui/dashboard.h"
+#include "tui/inspect_dashboard.h"
+#include "tui/terminal.h"
 
 namespace hitl::cli {
 namespace {
@@ -33,6 +39,7 @@ struct InspectOptions {
   int compid = mavlink::kCompIdMissionPlanner;
   std::string signing_key;
   bool require_signed = false;
+  bool tui = false;  ///< --tui: the dashboard's data paths, messages and link panels (docs/tui.md)
 };
 
 nlohmann::json frame_json(const mavlink::Frame& f, const std::string& source, int64_t t_ns) {
@@ -129,7 +136,54 @@ const char* end_reason_name(inspect::Inspector::EndReason reason) {
   return "?";
 }
 
-int run_inspect(const GlobalOptions& global, const InspectOptions& opt) {
+/// Feeds the dashboard and keeps --show's latest values for the final output.
+class DashboardTee : public inspect::Inspector::Observer {
+ public:
+  DashboardTee(tui::InspectDashboard& dashboard, InspectPrinter& printer) : dashboard_(dashboard), printer_(printer) {}
+  void on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns) override {
+    dashboard_.on_frame(frame, source, t_ns);
+    printer_.on_frame(frame, source, t_ns);
+  }
+  void on_tick(const telemetry::TrafficSummary& summary) override { dashboard_.on_tick(summary); }
+
+ private:
+  tui::InspectDashboard& dashboard_;
+  InspectPrinter& printer_;
+};
+
+/// --tui: the inspector on its own thread, the dashboard on this one; q or a signal ends both.
+Expected<inspect::Inspector::EndReason> run_with_dashboard(inspect::Inspector& inspector, InspectPrinter& printer,
+                                                           const InspectOptions& opt,
+                                                           const std::vector<inspect::Expectation>& expectations) {
+  std::map<std::string, double> expected_hz;
+  for (const auto& e : expectations) expected_hz[e.name] = e.rate_hz;
+  tui::InspectDashboard dashboard(inspector.where(), expected_hz, !opt.tlog.empty());
+  DashboardTee tee(dashboard, printer);
+  std::atomic<bool> stop{false};
+  Expected<inspect::Inspector::EndReason> end = Error{"not run"};
+  std::thread loop([&] {
+    end = inspector.run(stop, tee);
+    dashboard.mark_finished(end ? std::string(end_reason_name(*end)) : "error: " + end.error().message);
+  });
+  auto shown = tui::run_dashboard(dashboard, nullptr);
+  stop.store(true);
+  loop.join();
+  if (!shown) log_error("inspect", "--tui: " + shown.error().message);
+  return end;
+}
+
+int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
+  InspectOptions opt = opt_in;
+  if (opt.tui && opt.follow) {
+    log_error("inspect", "--follow prints every frame as it arrives; it does not go with --tui");
+    return kExitUsage;
+  }
+  if (opt.tui) {
+    if (auto usable = tui::terminal_usable(); !usable) {
+      std::cerr << "hitl inspect: --tui: " << usable.error().message << "; printing the summary lines instead\n";
+      opt.tui = false;
+    }
+  }
   const std::string cmd = "inspect";
   const int sources = (opt.port ? 1 : 0) + (opt.connect.empty() ? 0 : 1) + (opt.tlog.empty() ? 0 : 1);
   if (sources != 1) {
@@ -198,10 +252,12 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt) {
   const auto& stop = stop_flag_on_signals();
   const char* verb = opt.port ? "listening on " : (opt.connect.empty() ? "reading " : "connected to ");
   log_info(global, "hitl inspect: " + std::string(verb) + (*inspector)->where() +
-                       (opt.record.empty() ? "" : ", recording to " + opt.record) + " (Ctrl-C for the summary)");
+                       (opt.record.empty() ? "" : ", recording to " + opt.record) + (opt.tui ? "" : " (Ctrl-C for the summary)"));
 
-  InspectPrinter printer(global, opt, show_ids);
-  auto end = (*inspector)->run(stop, printer);
+  GlobalOptions printer_options = global;
+  if (opt.tui) printer_options.verbosity = 0;  // nothing may write over the dashboard
+  InspectPrinter printer(printer_options, opt, show_ids);
+  auto end = opt.tui ? run_with_dashboard(**inspector, printer, opt, expectations) : (*inspector)->run(stop, printer);
   if (!end) {
     log_error(cmd, end.error().message);
     return kExitFailed;
@@ -259,7 +315,9 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
   src->add_option("--connect", opt->connect,
                   "Talk to a MAVLink instance at HOST:PORT, sending HEARTBEAT at 1 Hz so it streams to us")
       ->type_name("HOST:PORT");
-  src->add_option("--tlog", opt->tlog, "Read a telemetry log offline, as fast as it reads")->check(CLI::ExistingFile);
+  src->add_option("--tlog", opt->tlog, "Read a telemetry log offline, as fast as it reads")
+      ->check(CLI::ExistingFile)
+      ->type_name("FILE.tlog");
   src->require_option(1);
   sub->add_option("--bind", opt->bind, "Address to listen on with --port")->capture_default_str()->group("Connection");
   sub->add_option("--local-port", opt->local_port,
@@ -269,8 +327,11 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
   sub->add_option("--record", opt->record, "Save every frame received to a .tlog")->type_name("FILE.tlog");
   sub->add_option("--show", opt->show, "Print decoded fields of these messages (latest, or each with --follow)")
       ->delimiter(',')
-      ->type_name("NAME[,NAME]");
+      ->type_name(value_type::kMessageList);
   sub->add_flag("--follow", opt->follow, "With --show: print every matching message as it arrives");
+  sub->add_flag("--tui", opt->tui,
+                "The live dashboard (docs/tui.md): a row per message (rate against --expect, jitter, max gap), "
+                "STATUSTEXT, per-source loss; q quits. Without a terminal: the summary lines");
   sub->add_option("--duration", opt->duration_s, "Stop after this many seconds (tlog: of log time)")
       ->check(CLI::PositiveNumber)
       ->type_name("S");
@@ -278,7 +339,7 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
       ->check(CLI::PositiveNumber)
       ->type_name("N");
   sub->add_option("--expect", opt->expect, "Rates the link must carry; exit 1 when one falls outside the tolerance")
-      ->type_name("NAME=HZ[,NAME=HZ]");
+      ->type_name(value_type::kMessageRateList);
   sub->add_option("--tolerance", opt->tolerance_pct, "Accepted deviation from each --expect rate, percent")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0))

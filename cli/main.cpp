@@ -30,7 +30,11 @@ int main(int argc, char** argv) {
   add_arm_commands(app, options, state);
   add_shell_command(app, options, state);
   add_fly_command(app, options, state);
+  add_doctor_command(app, options, state);
   add_bridge_command(app, options, state);
+  add_demo_command(app, options, state);
+  add_completion_command(app, options, state);
+  add_reference_command(app, options, state);
 
   try {
     app.parse(argc, argv);

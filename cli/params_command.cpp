@@ -12,6 +12,7 @@
 #include "cli/commands.h"
 #include "cli/link_options.h"
 #include "engine/vehicle/param_client.h"
+#include "engine/vehicle/params_check.h"
 #include "engine/vehicle/params_file.h"
 
 namespace hitl::cli {
@@ -180,19 +181,14 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
   if (action == "diff" || action == "check") {
     auto all = download(g, *s);
     if (!all) return kExitFailed;
-    std::map<std::string, vehicle::ParamValue> board;
-    for (const auto& p : *all) board[p.name] = p.value;
     nlohmann::json rows = nlohmann::json::array();
-    for (const auto& p : vehicle::hitl_default_params()) {
-      auto it = board.find(p.name);
-      const bool ok = it != board.end() && it->second == p.value;
-      if (action == "diff" && ok) continue;
-      nlohmann::json row = {{"name", p.name}, {"expected", to_json(p.value)},
-                            {"board", it == board.end() ? nlohmann::json(nullptr) : to_json(it->second)}, {"ok", ok},
-                            {"board_text", it == board.end() ? std::string("missing") : it->second.to_string()},
-                            {"expected_text", p.value.to_string()}};
-      if (!ok) row["fix"] = it == board.end() ? "this PX4 build lacks " + p.name
-                                              : "hitl params set " + p.name + " " + p.value.to_string() + "  (or: hitl params reset)";
+    for (const auto& c : vehicle::check_params(*all, vehicle::hitl_default_params())) {
+      if (action == "diff" && c.ok) continue;
+      nlohmann::json row = {{"name", c.name}, {"expected", to_json(c.expected)},
+                            {"board", c.board ? to_json(*c.board) : nlohmann::json(nullptr)}, {"ok", c.ok},
+                            {"board_text", c.board ? c.board->to_string() : std::string("missing")},
+                            {"expected_text", c.expected.to_string()}};
+      if (!c.ok) row["fix"] = c.fix;
       rows.push_back(row);
     }
     bool all_ok = true;

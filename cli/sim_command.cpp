@@ -1,18 +1,25 @@
 // hitl sim: the Simbody x500 bridged to a flight stack over MAVLink (replaces the spec's
 // Gazebo + mavlink_hitl_gazebosim + hitl-gz-start.sh).
+#include <atomic>
 #include <cstdio>
 #include <iostream>
+#include <thread>
 #include <map>
 #include <memory>
 
 #include <unistd.h>
 
+#include "cli/adb_options.h"
 #include "cli/commands.h"
 #include "engine/hil/session.h"
 #include "engine/net/socket_address.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
 #include "engine/model/x500_defaults.h"
+#include "tui/command_runner.h"
+#include "tui/draw.h"
+#include "tui/sim_dashboard.h"
+#include "tui/terminal.h"
 
 namespace hitl::cli {
 namespace {
@@ -22,8 +29,10 @@ struct SimOptions {
   std::string vehicle_file;
   std::string world_file;
   std::string trajectory_file;
+  bool tui = false;  ///< --tui: the dashboard (docs/tui.md)
   std::string px4_sitl;  ///< "tcp:4560" / "udp:14560" when --px4-sitl is given
   bool px4_sitl_given = false;
+  AdbOptions adb;  ///< --adb, --adb-serial, --adb-relay: the board through adb (docs/adb.md)
   bool no_vio = false;
   std::optional<bool> en_vio_output;
   std::string protocol_version = "2.0";
@@ -168,9 +177,43 @@ const char* end_name(hil::Session::EndReason r) {
   return "?";
 }
 
+/// --tui: the session on its own thread, the dashboard on this one; either ending ends both.
+Expected<hil::Session::EndReason> run_with_dashboard(const GlobalOptions& global, hil::Session& session, const SimOptions& opt) {
+  tui::SimDashboardConfig dc;
+  dc.trajectory_file = opt.trajectory_file;
+  dc.trajectory_mode = vehicle::to_string(opt.session.trajectory_mode);
+  if (auto exe = tui::own_executable()) dc.hitl_binary = *exe;
+  tui::SimDashboard dashboard(session, opt.session, dc);
+  std::atomic<bool> stop{false};
+  Expected<hil::Session::EndReason> end = Error{"not run"};
+  std::thread loop([&] {
+    end = session.run(stop, dashboard);
+    dashboard.mark_finished(end ? std::string("the session ended (") + end_name(*end) + ")" : "error: " + end.error().message);
+  });
+  auto shown = tui::run_dashboard(dashboard, &dashboard);
+  stop.store(true);
+  loop.join();
+  dashboard.shutdown();
+  if (!shown) {
+    log_error("sim", "--tui: " + shown.error().message);
+    return end;
+  }
+  if (shown->reason == tui::DashboardEnd::Reason::Signal) std::cerr << "hitl sim: stopped by " << shown->detail << '\n';
+  if (global.verbosity >= 1)
+    log_info(global, tui::format("hitl sim: the dashboard drew %llu frames, %.2f ms each on average, %.2f ms at most",
+                                 static_cast<unsigned long long>(shown->frames), shown->render_ms_mean, shown->render_ms_max));
+  return end;
+}
+
 int run_sim(const GlobalOptions& global, SimOptions& opt) {
   const std::string cmd = "sim";
   auto& cfg = opt.session;
+  if (opt.tui) {
+    if (auto usable = tui::terminal_usable(); !usable) {
+      std::cerr << "hitl sim: --tui: " << usable.error().message << "; showing the status lines instead\n";
+      opt.tui = false;
+    }
+  }
   auto vehicle = opt.vehicle_file.empty() ? Expected<model::VehicleConfig>(model::x500_vehicle_config())
                                           : model::load_vehicle_config(opt.vehicle_file);
   if (!vehicle) {
@@ -189,7 +232,8 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
       log_error(cmd, "-t: " + trajectory.error().message);
       return kExitUsage;
     }
-    cfg.trajectory = std::move(trajectory.value());
+    // With the dashboard the trajectory waits for the f key (flown from the host through the client port).
+    if (!opt.tui) cfg.trajectory = std::move(trajectory.value());
   }
   cfg.vehicle = *vehicle;
   cfg.world = *world;
@@ -218,16 +262,37 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     std::cerr << "hitl sim: warning: --local-port 0 picks an ephemeral port; a PX4 instance keeps the first port it "
                  "heard, so a later session on another port gets no answer\n";
 
+  // --adb: the board's HIL and VIO ports are the tunnel's local endpoints (docs/adb.md).
+  std::unique_ptr<net::AdbTunnel> tunnel;
+  if (opt.adb.enabled()) {
+    auto opened = open_adb_tunnel(global, cmd, opt.adb);
+    if (!opened) {
+      log_error(cmd, "--adb: " + opened.error().message);
+      return kExitFailed;
+    }
+    tunnel = std::move(opened.value());
+    log_info(global, "hitl sim: " + tunnel->describe());
+    cfg.target_ip = "127.0.0.1";
+    cfg.hil_port = tunnel->local_endpoint(adb::Channel::Hil).port();
+    cfg.vio_ip = "127.0.0.1";
+    cfg.vio_port = tunnel->local_endpoint(adb::Channel::Vio).port();
+  }
+
   auto session = hil::Session::create(cfg);
   if (!session) {
     log_error(cmd, session.error().message);
     return kExitUsage;
   }
   const auto& stop = stop_flag_on_signals();
-  log_info(global, "hitl sim: " + (*session)->describe() + " (Ctrl-C to stop)");
-  SimPrinter printer(global);
-  auto end = (*session)->run(stop, printer);
-  printer.end_line();
+  log_info(global, "hitl sim: " + (*session)->describe() + (opt.tui ? "" : " (Ctrl-C to stop)"));
+  Expected<hil::Session::EndReason> end = Error{"not run"};
+  if (opt.tui) {
+    end = run_with_dashboard(global, **session, opt);
+  } else {
+    SimPrinter printer(global);
+    end = (*session)->run(stop, printer);
+    printer.end_line();
+  }
   const auto snap = (*session)->snapshot();
   if (!end) {
     log_error(cmd, end.error().message);
@@ -235,6 +300,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
       auto j = snapshot_json(snap, true);
       j["end"] = "error";
       j["error"] = end.error().message;
+      if (tunnel) j["adb"] = adb_tunnel_json(*tunnel);
       print_json_line(j);
     }
     return kExitFailed;
@@ -242,9 +308,11 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   if (global.json) {
     auto j = snapshot_json(snap, true);
     j["end"] = end_name(*end);
+    if (tunnel) j["adb"] = adb_tunnel_json(*tunnel);
     print_json_line(j);
   } else {
     print_summary(snap, end_name(*end));
+    if (tunnel) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
   }
   const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed;
   return failed ? kExitFailed : kExitOk;
@@ -258,13 +326,13 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   auto* sub = app.add_subcommand("sim", "Simulate the x500 and bridge it to the board (or PX4 SITL) over MAVLink");
   sub->footer(
       "Examples:\n"
-      "  hitl sim                          # board on 127.0.0.1 (adb forward), real time\n"
+      "  hitl sim --adb                    # board over USB through adb (hitl-adb-relay; docs/adb.md)\n"
       "  hitl sim -i 192.168.101.2         # board over USB-Ethernet\n"
       "  hitl sim --px4-sitl               # PX4 SITL connects to TCP 4560 (lockstep)\n"
       "  hitl sim --duration 60 --json     # headless, a JSON summary at the end\n"
       "Names of the spec's SDF plugin parameters work too (--mavlink-addr, --vio-update-rate, ...).");
   const char* link = "Board link";
-  sub->add_option("-i,--target-ip,--mavlink-addr", c.target_ip, "The board's IP (USB-Ethernet, or 127.0.0.1 with adb)")
+  sub->add_option("-i,--target-ip,--mavlink-addr", c.target_ip, "The board's IP (USB-Ethernet; --adb reaches it through adb instead)")
       ->capture_default_str()->group(link);
   sub->add_option("--hil-port,--mavlink-udp-remote-port", c.hil_port, "The board's HIL MAVLink port")
       ->capture_default_str()->check(CLI::Range(1, 65535))->group(link);
@@ -281,6 +349,7 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_option("--compid", opt->compid, "Component id of the simulator")->capture_default_str()->check(CLI::Range(1, 255))->group(link);
   sub->add_option("--protocol-version", opt->protocol_version, "MAVLink protocol version")
       ->capture_default_str()->check(CLI::IsMember({"1.0", "2.0"}))->group(link);
+  add_adb_options(*sub, opt->adb, link);
 
   const char* vio = "VIO (ODOMETRY from ground truth)";
   sub->add_option("--vio-ip,--vio-mavlink-addr", c.vio_ip, "Where voxl-hitl-vio-server listens (default: the target IP)")->group(vio);
@@ -315,13 +384,20 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
 
   sub->add_option("-t,--trajectory", opt->trajectory_file,
                   "Fly this trajectory file (the spec's trajectory_rc: arm, take off, follow the waypoints by stick, "
-                  "hold, land) and end the session; the summary gives the tracking error against ground truth")
+                  "hold, land) and end the session; the summary gives the tracking error against ground truth. With --tui: "
+                  "flown when you press f, through the client port")
       ->check(CLI::ExistingFile)->type_name("FILE.json")->group(model);
   sub->add_option("--trajectory-mode", c.trajectory_mode,
                   "-t's sticks: velocity (Position mode) or attitude (Stabilized: tilt and thrust)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
                                                                                   {"attitude", vehicle::StickMode::Attitude}}))
       ->default_str("velocity")->group(model);
+
+  sub->add_flag("--tui", opt->tui,
+                "The live dashboard (docs/tui.md): data paths, dsp_hitl, EKF, vehicle, messages, link; keys a arm, d disarm, "
+                "t takeoff, l land, p pause, r reset, f fly the -t file (waits for the key), s shell, ? help, q quit. "
+                "Without a terminal: the status lines")
+      ->group("Dashboard");
 
   const char* route = "Clients and recording";
   sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local MAVLink clients (other hitl commands); 0: none")
@@ -333,6 +409,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                       ", estimator MOCAP), Hz; 0: none")
       ->capture_default_str()->check(CLI::NonNegativeNumber)->group(route);
   sub->add_option("--record", c.record_path, "Save everything sent and received to a .tlog")->type_name("FILE.tlog")->group(route);
+  // Through adb the board's ports are the relay's; an address for them would be ignored.
+  for (const char* adb_name : {"--adb", "--adb-serial"})
+    for (const char* other : {"--target-ip", "--hil-port", "--vio-ip", "--vio-port", "--px4-sitl"})
+      sub->get_option(adb_name)->excludes(sub->get_option(other));
   sub->callback([&options, &state, opt, px4_sitl]() {
     opt->px4_sitl_given = px4_sitl->count() > 0;  // also when given bare: `--px4-sitl` means tcp:4560
     state.exit_code = run_sim(options, *opt);

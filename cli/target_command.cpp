@@ -103,7 +103,20 @@ void add_target_command(CLI::App& app, GlobalOptions& options, RunState& state) 
                 "Run on HIL_SENSOR.time_usec and answer each HIL_SENSOR (pair with hitl sim --lockstep --speed 0)");
   sub->add_option("--duration", config->duration_s, "Stop after this many seconds of board time")
       ->check(CLI::NonNegativeNumber)->type_name("S");
-  sub->callback([&options, &state, config]() { state.exit_code = run_target(options, *config); });
+  auto faults = std::make_shared<std::vector<std::string>>();
+  std::string fault_list;
+  for (const auto& n : target::fault_names()) fault_list += (fault_list.empty() ? "" : ", ") + n;
+  sub->add_option("--fault", *faults,
+                  "Inject a fault hitl doctor must catch (repeatable): " + fault_list + " (docs/doctor.md)")
+      ->type_name("NAME")
+      ->check([](const std::string& name) {
+        auto f = target::parse_fault(name);
+        return f ? std::string() : f.error().message;
+      });
+  sub->callback([&options, &state, config, faults]() {
+    for (const auto& name : *faults) config->faults.set(*target::parse_fault(name));
+    state.exit_code = run_target(options, *config);
+  });
 }
 
 }  // namespace hitl::cli

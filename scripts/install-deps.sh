@@ -13,8 +13,13 @@ packages=(
 )
 if [ "${1:-}" = "--test" ]; then
   # Tests also use: clang + its sanitizer/fuzzer runtime (libFuzzer), node + npm (node-mavlink conformance),
-  # tmux (terminal UI end-to-end), shellcheck (board scripts).
-  packages+=(clang libclang-rt-dev tmux shellcheck)
+  # tmux (terminal UI end-to-end), shellcheck (board scripts), g++-aarch64-linux-gnu and file (the
+  # arm64 board packages, test label "package").
+  packages+=(clang libclang-rt-dev tmux shellcheck g++-aarch64-linux-gnu file)
+  # Completions, man page and .deb (tests/ecosystem): zsh and fish run the completion scripts,
+  # groff-base, man-db and mandoc render and lint the man page, dpkg-dev's dpkg-shlibdeps computes
+  # the package's Depends (file finds the binaries for it).
+  packages+=(zsh fish groff-base man-db mandoc dpkg-dev)
   command -v node >/dev/null 2>&1 || packages+=(nodejs)
   command -v npm >/dev/null 2>&1 || packages+=(npm)
 fi

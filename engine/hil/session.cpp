@@ -8,9 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <algorithm>
 #include <optional>
 
 #include "engine/hil/actuator_input.h"
+#include "engine/hil/data_paths.h"
 #include "engine/hil/pacer.h"
 #include "engine/hil/sensor_messages.h"
 #include "engine/mavlink/enums.h"
@@ -25,6 +27,7 @@
 #include "engine/net/tcp_server.h"
 #include "engine/net/udp_endpoint.h"
 #include "engine/sensors/sensor_suite.h"
+#include "engine/telemetry/health.h"
 #include "engine/vehicle/trajectory_pilot.h"
 
 namespace hitl::hil {
@@ -70,6 +73,17 @@ struct Session::Impl {
 
   ActuatorInput actuators{0.5};
   std::optional<Pacer> pacer;
+  std::optional<DataPaths> paths;
+
+  // Operator controls (the dashboard): requests from other threads, taken at the next step.
+  std::atomic<bool> pause_wanted{false};
+  std::atomic<bool> reset_wanted{false};
+  bool paused = false;
+  bool resumed = false;          ///< the first step after a pause: no answer is owed for it
+  double pause_start_s = 0;
+  double paused_total_s = 0;     ///< wall time spent paused (actuator timeouts do not count it)
+  double time_offset_s = 0;      ///< simulated time before the last reset: the wire's clock never goes back
+  uint64_t resets = 0;
 
   std::map<uint32_t, Counter> sent;
   std::map<uint32_t, Counter> received;
@@ -82,6 +96,7 @@ struct Session::Impl {
   uint64_t vio_k = 0;
   double next_truth_s = 0;
   uint64_t truth_k = 0;
+  double next_status_wall_s = 0;
   double next_heartbeat_s = 0;
   double start_wall_s = 0;
   double first_sensor_wall_s = -1;
@@ -96,6 +111,10 @@ struct Session::Impl {
   SessionSnapshot published;
 
   bool sitl() const { return config.link == FlightStackLink::SitlTcp || config.link == FlightStackLink::SitlUdp; }
+  /// Simulated time since the session started, across resets.
+  double sim_time_s() const { return time_offset_s + model->state().time_s; }
+  /// The monotonic clock without the time spent paused (what actuator timeouts are measured on).
+  double unpaused_s(double wall_s) const { return wall_s - paused_total_s - (paused ? wall_s - pause_start_s : 0.0); }
   bool lockstep() const { return config.lockstep || sitl(); }
 
   const char* name_of(uint32_t id) const {
@@ -156,9 +175,10 @@ struct Session::Impl {
     auto& c = received[f.msgid];
     ++c.count;
     ++c.window;
+    paths->on_stack_frame(f, now_s);
     if (pilot) pilot->on_board_frame(f);
     if (f.is<mavlink::msg::HilActuatorControls>()) {
-      actuators.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, now_s);
+      actuators.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, unpaused_s(now_s));
     } else if (!is_hil_message(f.msgid) && clients) {
       router.route(f, board_link, now_s);
     }
@@ -222,22 +242,128 @@ struct Session::Impl {
     }
   }
 
+  /// Takes the operator's pause and reset requests; true while paused (the step does nothing).
+  bool take_controls(Observer& observer) {
+    if (const bool want = pause_wanted.load(); want != paused) {
+      const double now = monotonic_s();
+      char text[96];
+      if (want) {
+        pause_start_s = now;
+        std::snprintf(text, sizeof text, "paused at %.1f s: the model holds, no sensor data is sent", sim_time_s());
+      } else {
+        paused_total_s += now - pause_start_s;
+        resumed = true;
+        std::snprintf(text, sizeof text, "resumed at %.1f s", sim_time_s());
+      }
+      paused = want;
+      observer.on_event({Severity::Info, text});
+    }
+    if (reset_wanted.exchange(false)) {
+      time_offset_s += model->state().time_s;  // the wire's clock carries on
+      model->reset();
+      sensors->reset();
+      ++resets;
+      char text[96];
+      std::snprintf(text, sizeof text, "reset to home at rest, motors stopped (time carries on at %.1f s)", sim_time_s());
+      observer.on_event({Severity::Info, text});
+    }
+    return paused;
+  }
+
+  /// Once a wall-clock second, the session's own state to its clients (hitl doctor, bridge
+  /// dashboards): HEARTBEAT from the simulator's sysid (STANDBY while paused) and NAMED_VALUE_*
+  /// "sim_rtf" (recent real-time factor), "sim_late" (late ticks), "sim_pause" (0/1).
+  void send_status_to_clients(double now_s) {
+    if (!clients || now_s < next_status_wall_s) return;
+    next_status_wall_s = now_s + 1.0;
+    mavlink::msg::Heartbeat hb;
+    hb.type = static_cast<uint8_t>(mavlink::MavType::Generic);
+    hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
+    hb.system_status = static_cast<uint8_t>(paused ? mavlink::MavState::Standby : mavlink::MavState::Active);
+    hb.mavlink_version = mavlink::kMavlinkVersion;
+    broadcast_own(hb);
+    const auto boot_ms = static_cast<uint32_t>((now_s - start_wall_s) * 1000.0);
+    mavlink::msg::NamedValueFloat rtf;
+    rtf.time_boot_ms = boot_ms;
+    set_name(rtf.name, kStatusRtfName);
+    rtf.value = static_cast<float>(recent_rtf);
+    broadcast_own(rtf);
+    mavlink::msg::NamedValueInt late;
+    late.time_boot_ms = boot_ms;
+    set_name(late.name, kStatusLateName);
+    late.value = static_cast<int32_t>(std::min<uint64_t>(pacer ? pacer->stats().late : 0, INT32_MAX));
+    broadcast_own(late);
+    mavlink::msg::NamedValueInt pause;
+    pause.time_boot_ms = boot_ms;
+    set_name(pause.name, kStatusPauseName);
+    pause.value = paused ? 1 : 0;
+    broadcast_own(pause);
+    send_doctor_status(boot_ms, now_s);
+  }
+
+  /// What `hitl doctor` reads beside the above (session_config.h): the requested pace, lockstep,
+  /// and what the board's HIL_ACTUATOR_CONTROLS look like here (they never reach clients).
+  void send_doctor_status(uint32_t boot_ms, double now_s) {
+    auto named_float = [&](std::string_view name, double value) {
+      mavlink::msg::NamedValueFloat m;
+      m.time_boot_ms = boot_ms;
+      set_name(m.name, name);
+      m.value = static_cast<float>(value);
+      broadcast_own(m);
+    };
+    auto named_int = [&](std::string_view name, int32_t value) {
+      mavlink::msg::NamedValueInt m;
+      m.time_boot_ms = boot_ms;
+      set_name(m.name, name);
+      m.value = value;
+      broadcast_own(m);
+    };
+    double actuator_hz = 0;
+    for (const auto& p : paths->stats(now_s))
+      if (!p.outgoing && p.stats.since_last_s >= 0 && p.stats.since_last_s < telemetry::kStaleAfter_s) actuator_hz = p.stats.rate_hz;
+    const bool heard = actuators.ever_received();
+    named_float(kStatusSpeedName, config.speed);
+    named_int(kStatusLockstepName, lockstep() ? 1 : 0);
+    named_float(kStatusActuatorRateName, actuator_hz);
+    named_int(kStatusActuatorFlagsName, heard ? actuators.last_flags() : -1);
+    named_int(kStatusActuatorArmedName, heard ? (actuators.armed() ? 1 : 0) : -1);
+  }
+
+  template <class M>
+  void broadcast_own(const M& message) {
+    mavlink::FrameBuffer buf;
+    if (const std::size_t n = truth_encoder.encode(message, buf)) clients->broadcast({buf.data(), n});
+  }
+
+  template <std::size_t N>
+  static void set_name(std::array<char, N>& field, std::string_view name) {
+    field.fill('\0');
+    std::copy_n(name.begin(), std::min(name.size(), N), field.begin());
+  }
+
   Status step(Observer& observer) {
     const double now_s = monotonic_s();
     drain(now_s);
-    lockstep_wait(observer);
-    model->set_motor_commands(actuators.commands(monotonic_s()));
+    send_status_to_clients(now_s);
+    if (take_controls(observer)) return Ok{};
+    if (!std::exchange(resumed, false)) lockstep_wait(observer);
+    model->set_motor_commands(actuators.commands(unpaused_s(monotonic_s())));
     if (auto st = model->step(); !st) return st;
     const auto& state = model->state();
     const auto frame = sensors->sample_due(state);
-    const uint64_t t_us = mavlink::wire::s_to_us(state.time_s);
+    const double sent_s = monotonic_s();
+    const uint64_t t_us = mavlink::wire::s_to_us(time_offset_s + state.time_s);
     if (frame.imu || frame.mag || frame.baro) {
       send_to_stack(make_hil_sensor(frame, t_us));
+      paths->on_hil_sensor(frame.imu.has_value(), frame.mag.has_value(), frame.baro.has_value(), sent_s);
       if (first_sensor_wall_s < 0) first_sensor_wall_s = monotonic_s();
     }
-    if (frame.gps) send_to_stack(make_hil_gps(*frame.gps, t_us));
+    if (frame.gps) {
+      send_to_stack(make_hil_gps(*frame.gps, t_us));
+      paths->on_hil_gps(sent_s);
+    }
     if (pilot) fly_pilot(state, observer);
-    if (state.time_s + 1e-9 >= next_heartbeat_s) {
+    if (time_offset_s + state.time_s + 1e-9 >= next_heartbeat_s) {
       next_heartbeat_s += 1.0;
       mavlink::msg::Heartbeat hb;
       hb.type = static_cast<uint8_t>(mavlink::MavType::Generic);
@@ -248,12 +374,13 @@ struct Session::Impl {
     }
     flush_to_stack();
     actuators.take_new();  // answers counted from here on belong to these sensors
-    if (vio && state.time_s + 1e-9 >= next_vio_s) {
+    if (vio && time_offset_s + state.time_s + 1e-9 >= next_vio_s) {
       ++vio_k;
       next_vio_s = static_cast<double>(vio_k) / config.vio_rate_hz;
       send_to_vio(make_odometry(frame.truth, t_us));
+      paths->on_odometry(sent_s);
     }
-    if (clients && config.truth_rate_hz > 0 && state.time_s + 1e-9 >= next_truth_s) {
+    if (clients && config.truth_rate_hz > 0 && time_offset_s + state.time_s + 1e-9 >= next_truth_s) {
       ++truth_k;
       next_truth_s = static_cast<double>(truth_k) / config.truth_rate_hz;
       auto odometry = make_odometry(frame.truth, t_us);
@@ -277,8 +404,8 @@ struct Session::Impl {
     pose.v_ENU_m_s = {state.v_ENU_m_s.x(), state.v_ENU_m_s.y(), state.v_ENU_m_s.z()};
     const Eigen::Matrix3d R = state.q_FLU_to_ENU.toRotationMatrix();
     pose.yaw_ENU_rad = std::atan2(R(1, 0), R(0, 0));
-    auto out = pilot->step(state.time_s, pose);
-    pilot->observe_truth(state.time_s, pose);  // the session's pilot flies on truth itself
+    auto out = pilot->step(time_offset_s + state.time_s, pose);
+    pilot->observe_truth(time_offset_s + state.time_s, pose);  // the session's pilot flies on truth itself
     mavlink::FrameBuffer buf;
     for (const auto& c : out.commands) forward_to_stack({buf.data(), pilot_encoder.encode(c, buf)});
     if (out.rc) forward_to_stack({buf.data(), pilot_encoder.encode(*out.rc, buf)});
@@ -300,7 +427,7 @@ struct Session::Impl {
   SessionSnapshot make_snapshot() const {
     SessionSnapshot s;
     const auto& st = model->state();
-    s.sim_time_s = st.time_s;
+    s.sim_time_s = sim_time_s();
     s.wall_time_s = monotonic_s() - start_wall_s;
     s.real_time_factor = s.wall_time_s > 0 ? s.sim_time_s / s.wall_time_s : 0;
     s.recent_real_time_factor = recent_rtf;
@@ -340,6 +467,11 @@ struct Session::Impl {
     }
     s.actuator_flags = actuators.last_flags();
     s.actuator_mode = actuators.last_mode();
+    s.paths = paths->stats(monotonic_s());
+    s.paused = paused;
+    s.resets = resets;
+    s.speed = config.speed;
+    s.lockstep = lockstep();
     return s;
   }
 
@@ -358,9 +490,10 @@ struct Session::Impl {
         c.rate_hz = static_cast<double>(c.window) / dt;
         c.window = 0;
       }
-    recent_rtf = (model->state().time_s - window_start_sim_s) / dt;
+    recent_rtf = (sim_time_s() - window_start_sim_s) / dt;
+    paths->roll(now, config.speed > 0 ? config.speed : recent_rtf);
     window_start_wall_s = now;
-    window_start_sim_s = model->state().time_s;
+    window_start_sim_s = sim_time_s();
   }
 };
 
@@ -450,6 +583,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     impl->recorder.emplace(std::move(w.value()));
   }
   impl->pacer.emplace(kStepPeriod_s, config.speed);
+  impl->paths.emplace(config);
   return std::unique_ptr<Session>(new Session(std::move(impl)));
 }
 
@@ -506,7 +640,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
   EndReason reason = EndReason::Stopped;
   for (;;) {
     if (stop.load()) break;
-    if (s.config.duration_s > 0 && s.model->state().time_s + 1e-9 >= s.config.duration_s) {
+    if (s.config.duration_s > 0 && s.sim_time_s() + 1e-9 >= s.config.duration_s) {
       reason = EndReason::Duration;
       break;
     }
@@ -542,6 +676,10 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
   s.publish();
   return reason;
 }
+
+void Session::set_paused(bool paused) { impl_->pause_wanted.store(paused); }
+
+void Session::request_reset() { impl_->reset_wanted.store(true); }
 
 SessionSnapshot Session::snapshot() const {
   std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/common/expected.h"
+#include "engine/hil/data_paths.h"
 #include "engine/hil/session_config.h"
 
 namespace hitl::hil {
@@ -69,6 +70,12 @@ struct SessionSnapshot {
   uint64_t trajectory_samples = 0;
   double trajectory_rms_m = 0;   ///< tracking error against ground truth
   double trajectory_max_m = 0;
+  // the data paths, live (the dashboard), and the operator's controls
+  std::vector<DataPathStats> paths;
+  bool paused = false;
+  uint64_t resets = 0;           ///< times the vehicle was put back home
+  double speed = 1.0;            ///< --speed (0: as fast as possible)
+  bool lockstep = false;
 };
 
 class Session {
@@ -93,6 +100,15 @@ class Session {
 
   /// Thread-safe: the latest snapshot (published about 10 times a second, and at the end).
   SessionSnapshot snapshot() const;
+
+  /// Thread-safe operator controls, taken at the next step. Paused, the model holds and nothing is
+  /// sent to the flight stack (lockstep: the board's clock stops with it; wall clock: the board
+  /// sees no sensor data, as with a paused Gazebo); clients are still routed. Actuator timeouts
+  /// do not count the time spent paused.
+  void set_paused(bool paused);
+  /// Puts the vehicle back home at rest with the motors stopped (sensor noise restarts from its
+  /// seed); simulated time on the wire carries on, so the flight stack sees no clock jump.
+  void request_reset();
   /// One line: where the session sends and listens.
   std::string describe() const;
 

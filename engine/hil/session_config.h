@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "engine/mavlink/frame.h"
 #include "engine/model/vehicle_config.h"
@@ -29,6 +30,18 @@ inline constexpr uint8_t kVioComponentId = 197;
 /// Ground truth for clients (trajectory tracking error, the dashboard): ODOMETRY in local NED from
 /// the simulator's own system id, estimator type MOCAP (external ground truth).
 inline constexpr double kTruthToClientsRate_hz = 50.0;
+/// The session's own state, to clients once a second (NAMED_VALUE_FLOAT / _INT from sysid 250),
+/// beside a HEARTBEAT whose system_status is STANDBY while paused.
+inline constexpr std::string_view kStatusRtfName = "sim_rtf";     ///< recent real-time factor
+inline constexpr std::string_view kStatusLateName = "sim_late";   ///< late ticks so far
+inline constexpr std::string_view kStatusPauseName = "sim_pause"; ///< 1 while paused
+/// For `hitl doctor` (docs/doctor.md), in the same message each second (NAMED_VALUE names hold at
+/// most 10 characters):
+inline constexpr std::string_view kStatusSpeedName = "sim_speed";     ///< FLOAT: the requested --speed (0: as fast as possible)
+inline constexpr std::string_view kStatusLockstepName = "sim_lockst"; ///< INT: 1 in lockstep (with the board or PX4 SITL)
+inline constexpr std::string_view kStatusActuatorRateName = "sim_act_hz";  ///< FLOAT: HIL_ACTUATOR_CONTROLS received, Hz of wall time, last window
+inline constexpr std::string_view kStatusActuatorFlagsName = "sim_act_fl"; ///< INT: the last one's flags (-1: none yet)
+inline constexpr std::string_view kStatusActuatorArmedName = "sim_act_ar"; ///< INT: the last one's MAV_MODE_FLAG_SAFETY_ARMED (0/1; -1: none yet)
 
 /// Who is on the other end of the HIL link.
 enum class FlightStackLink {

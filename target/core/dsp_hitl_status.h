@@ -19,10 +19,18 @@
 #include <cstddef>
 #include <string>
 
+#include "target/core/dsp_hitl.h"
+
 namespace hitl::target {
 
-struct DspHitlCounters;
-struct DspHitlCurrent;
+/// The labels of the five counters in the text, the one spelling formatter and parser share.
+namespace dsp_hitl_label {
+inline constexpr const char* kImuReceived = "HIL sensor_imu received";
+inline constexpr const char* kImuPublished = "IMU updates published";
+inline constexpr const char* kMagBaroReceived = "HIL sensor_mag_baro received";
+inline constexpr const char* kMagPublished = "MAG updates published";
+inline constexpr const char* kBaroPublished = "BARO updates published";
+}  // namespace dsp_hitl_label
 
 /// Writes the status into `buffer` (always NUL-terminated when size > 0) and returns the length
 /// of the whole text, like snprintf: a return >= size means it was truncated.
@@ -31,5 +39,17 @@ std::size_t format_dsp_hitl_status(char* buffer, std::size_t size, bool running,
 
 /// The same as a string.
 std::string dsp_hitl_status_text(bool running, const DspHitlCounters& counters, const DspHitlCurrent& current);
+
+/// What a host reads back from the status text (the shell's output of `qshell dsp_hitl status`).
+struct DspHitlStatusReport {
+  bool running = false;
+  DspHitlCounters counters;  ///< the five counters of the text; the drop reasons are not in it (0)
+  DspHitlCurrent current;    ///< imu_received false when the text says "no data"
+};
+
+/// Reads the status text back. Tolerates '\r', leading and trailing text around each line (a
+/// shell's log prefixes) and lines it does not know; needs "Running:" and all five counters.
+/// Returns false with `*error` naming the first missing or malformed line.
+bool parse_dsp_hitl_status(const std::string& text, DspHitlStatusReport* report, std::string* error);
 
 }  // namespace hitl::target

@@ -153,6 +153,15 @@ uint64_t HilSplit::next_due_us() const {
   return next_us;
 }
 
+int HilSplit::poll_timeout_ms(uint64_t now_us, int max_timeout_ms) const {
+  const int max_ms = std::max(max_timeout_ms, 0);
+  const uint64_t due_us = next_due_us();
+  if (due_us <= now_us) return 0;
+  const uint64_t wait_us = due_us - now_us;  // UINT64_MAX when nothing is live: no "+ 999" overflow
+  const uint64_t wait_ms = wait_us / 1000 + (wait_us % 1000 != 0 ? 1 : 0);
+  return wait_ms < static_cast<uint64_t>(max_ms) ? static_cast<int>(wait_ms) : max_ms;
+}
+
 HilSplitCounters HilSplit::counters() const {
   HilSplitCounters c = counters_;
   c.resyncs = imu_schedule_.resyncs() + mag_baro_schedule_.resyncs() + battery_schedule_.resyncs();

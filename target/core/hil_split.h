@@ -29,7 +29,8 @@
 // Groups with only some of their bits set are ignored (PX4 does the same) and counted.
 //
 // Driven by the caller's clock: on_hil_sensor() when a message arrives, poll() whenever
-// convenient (at least every 4 ms; next_due_us() says when something becomes due).
+// convenient (at least every 4 ms; next_due_us() says when something becomes due, poll_timeout_ms()
+// how long a receive loop such as PX4's MavlinkReceiver may block until then).
 #pragma once
 
 #include <cstdint>
@@ -94,6 +95,10 @@ class HilSplit {
 
   /// The earliest time at which poll() may return something; UINT64_MAX when nothing is live.
   uint64_t next_due_us() const;
+  /// How long a receive loop may block (poll(2)'s timeout, whole ms) before it must call poll():
+  /// the time to next_due_us() rounded up, 0 when something is due, at most `max_timeout_ms`.
+  /// Rounding up makes a publication at most 1 ms late rather than waking the loop early for nothing.
+  int poll_timeout_ms(uint64_t now_us, int max_timeout_ms) const;
   HilSplitCounters counters() const;
   const HilSplitConfig& config() const { return config_; }
 

@@ -72,6 +72,8 @@ struct Board::Impl {
   uint64_t hil_sensor_received = 0, hil_gps_received = 0, odometry_received = 0, actuators_sent = 0;
   uint64_t commands_received = 0, params_set = 0;
   std::array<double, 4> motors{};
+  double vio_rate_hz = 0, vio_rate_since_s = 0;
+  uint64_t vio_rate_count = 0;
 
   mutable std::mutex snapshot_mutex;
   BoardSnapshot published;
@@ -249,12 +251,13 @@ struct Board::Impl {
   }
 
   void send_actuators(MavlinkInstance& inst) {
+    if (config.faults.no_actuators) return;  // --fault no-actuators
     const auto s = flight->state();
     msg::HilActuatorControls m;
     m.time_usec = now_us;
     for (std::size_t i = 0; i < 4; ++i) m.controls[i] = s.armed ? static_cast<float>(motors[i]) : 0.0f;
     m.mode = base_mode_with_hil(s);
-    m.flags = 0x0F;  // the VOXL2's quad bitmask (spec)
+    m.flags = config.faults.wrong_flags ? kWrongActuatorFlags : 0x0F;  // the VOXL2's quad bitmask (spec)
     inst.send(m);
     ++actuators_sent;
   }
@@ -500,6 +503,7 @@ struct Board::Impl {
   // --- the board's own processing ----------------------------------------------------------------
   void process_board(uint64_t t_us) {
     auto out = split.poll(t_us);
+    if (config.faults.dsp_hitl_stalled && dsp.counters().hil_imu_received >= kDspStallAfterImu) out = {};  // --fault: MUORB stops delivering
     if (out.imu) {
       if (auto s = dsp.on_imu(*out.imu, t_us)) {
         flight->on_imu(s->accel, s->gyro);
@@ -514,6 +518,15 @@ struct Board::Impl {
     for (const auto& text : flight->take_messages()) statustext(text, mavlink::MavSeverity::Info);
   }
 
+  /// voxl-hitl-vio-server's ODOMETRY rate (wall clock, as the real server measures it), per status.
+  void measure_vio_rate() {
+    const double t_s = monotonic_s();
+    if (t_s - vio_rate_since_s < 0.5) return;
+    vio_rate_hz = static_cast<double>(odometry_received - vio_rate_count) / (t_s - vio_rate_since_s);
+    vio_rate_since_s = t_s;
+    vio_rate_count = odometry_received;
+  }
+
   void drain_vio() {
     if (!vio) return;
     while (auto d = vio->receive())
@@ -523,6 +536,26 @@ struct Board::Impl {
   }
 
   std::string shell_command(const std::string& line);
+
+  /// The apps processor's `voxl-hitl-vio-server --status [--json]` (target/vio-server), which the
+  /// emulated board answers in its one shell: its VIO listener is that server.
+  std::string vio_server_status(bool json) const {
+    char buf[256];
+    if (!vio) {
+      const char* why = "voxl-hitl-vio-server is not running (hitl target: no VIO listener)";
+      if (json) std::snprintf(buf, sizeof buf, "{\"running\":false,\"error\":\"%s\"}\n", why);
+      else std::snprintf(buf, sizeof buf, "%s\n", why);
+      return buf;
+    }
+    const std::string listen = vio->local_address().to_string();
+    if (json)
+      std::snprintf(buf, sizeof buf, "{\"running\":true,\"listen\":\"%s\",\"odometry_rate_hz\":%.1f,\"odometry\":%llu}\n",
+                    listen.c_str(), vio_rate_hz, static_cast<unsigned long long>(odometry_received));
+    else
+      std::snprintf(buf, sizeof buf, "voxl-hitl-vio-server (emulated by hitl target): listening on UDP %s\n  ODOMETRY:  %.1f Hz, %llu received\n",
+                    listen.c_str(), vio_rate_hz, static_cast<unsigned long long>(odometry_received));
+    return buf;
+  }
 
   BoardSnapshot make_snapshot() const {
     BoardSnapshot s;
@@ -551,6 +584,7 @@ struct Board::Impl {
   }
 
   void publish() {
+    measure_vio_rate();
     auto s = make_snapshot();
     std::lock_guard<std::mutex> lock(snapshot_mutex);
     published = std::move(s);
@@ -562,10 +596,13 @@ std::string Board::Impl::shell_command(const std::string& line) {
   if (cmd.rfind("qshell ", 0) == 0) cmd = cmd.substr(7);  // on the board qshell runs it on the DSP
   if (cmd == "help")
     return "Builtin commands (hitl target, an emulated VOXL2 board, not PX4):\n"
-           "  dsp_hitl status | qshell dsp_hitl status\n  commander status | arm | disarm | takeoff | land\n"
-           "  ekf2 status\n  mavlink status\n  param show [PATTERN] | param set NAME VALUE\n  ver all\n  help\n";
+           "  dsp_hitl status | qshell dsp_hitl status\n  commander status | check | arm | disarm | takeoff | land\n"
+           "  ekf2 status\n  mavlink status\n  param show [PATTERN] | param set NAME VALUE\n  ver all\n  help\n"
+           "  voxl-hitl-vio-server --status [--json]   (the apps processor's VIO server)\n";
   if (cmd == "dsp_hitl status") return dsp.status_text();
   if (cmd == "commander status") return flight->commander_status();
+  if (cmd == "commander check") return flight->commander_check();
+  if (cmd.rfind("voxl-hitl-vio-server --status", 0) == 0) return vio_server_status(cmd.find("--json") != std::string::npos);
   if (cmd == "ekf2 status") return flight->ekf2_status();
   if (cmd == "ver all") return "HW arch: VOXL2 (M0197), emulated by hitl target\nFW version: hitl target (PX4 v1.16 dialect)\n";
   if (cmd == "mavlink status") {
@@ -622,12 +659,17 @@ std::string Board::Impl::shell_command(const std::string& line) {
 Expected<std::unique_ptr<Board>> Board::create(const BoardConfig& config) {
   auto impl = std::make_unique<Impl>();
   impl->config = config;
+  impl->vio_rate_since_s = monotonic_s();
   // The flight core's own parameters first, then the spec's HITL set: its values win where both name one.
   impl->flight = std::make_unique<FlightAdapter>(impl->params);
   for (const auto& p : vehicle::hitl_default_params()) {
     if (impl->params.get(p.name) == nullptr) impl->params.add(p.name, p.value);
     else if (auto set = impl->params.set(p.name, p.value); !set) return Error{"HITL default " + p.name + ": " + set.error().message};
   }
+  // --fault (faults.h): parameters as a misconfigured board has them, and a disagreeing GPS.
+  if (config.faults.sys_hitl_0) (void)impl->params.set("SYS_HITL", vehicle::ParamValue::int32(0));
+  if (config.faults.wrong_cal_acc0_id) (void)impl->params.set("CAL_ACC0_ID", vehicle::ParamValue::int32(kWrongAccelDeviceId));
+  if (config.faults.ekf_not_converging) impl->flight->inject_mag_swing(kEkfFaultMagSwing_rad);
   auto hil = MavlinkInstance::open("HIL instance (--hil-port)", config.bind_address, config.hil_port, impl->messages,
                                    config.sysid, config.compid);
   if (!hil) return hil.error();
@@ -638,7 +680,7 @@ Expected<std::unique_ptr<Board>> Board::create(const BoardConfig& config) {
     if (!gcs) return gcs.error();
     impl->gcs = std::move(gcs.value());
   }
-  if (config.vio_port != 0) {
+  if (config.vio_port != 0 && !config.faults.no_vio_listener) {
     net::UdpEndpoint::Config c;
     c.name = "VIO listener (--vio-port)";
     c.bind_address = config.bind_address;
@@ -664,6 +706,7 @@ std::string Board::describe() const {
   if (impl_->gcs) out += ", GCS instance on UDP " + std::to_string(impl_->gcs->port());
   if (impl_->vio) out += ", VIO listener on UDP " + std::to_string(impl_->vio->local_address().port());
   out += impl_->config.lockstep ? " (lockstep: the board's clock is HIL_SENSOR.time_usec)" : "";
+  if (impl_->config.faults.any()) out += "; FAULTS INJECTED: " + impl_->config.faults.names();
   return out;
 }
 

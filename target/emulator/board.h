@@ -11,6 +11,7 @@
 #include <string>
 
 #include "engine/common/expected.h"
+#include "target/emulator/faults.h"
 
 namespace hitl::target {
 
@@ -26,6 +27,7 @@ struct BoardConfig {
   uint8_t sysid = 1;
   uint8_t compid = 1;      ///< MAV_COMP_ID_AUTOPILOT1
   uint64_t actuator_interval_us = 5000;  ///< HIL_ACTUATOR_CONTROLS at 200 Hz (real-time clock)
+  BoardFaults faults;      ///< --fault NAME (repeatable): what hitl doctor must catch (faults.h)
 };
 
 struct BoardEvent {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "target/core/device_ids.h"
 #include "target/emulator/flight/flight_core.h"
 #include "target/emulator/flight/rc_input.h"
 
@@ -29,7 +30,7 @@ struct FlightAdapter::Impl {
   flight::StickInput sticks;  ///< the last sticks, for channels an override leaves as they were
 };
 
-FlightAdapter::FlightAdapter(ParamStore& params) : impl_(std::make_unique<Impl>()) {
+FlightAdapter::FlightAdapter(ParamStore& params) : impl_(std::make_unique<Impl>()), params_(params) {
   for (const auto& info : flight::param_table()) {
     const auto value = info.type == flight::ParamType::Int32
                            ? vehicle::ParamValue::int32(static_cast<int32_t>(std::lround(info.default_value)))
@@ -56,6 +57,11 @@ void FlightAdapter::on_mag(const SensorMag& mag) {
   flight::MagSample s;
   s.time_us = mag.timestamp_sample_us;
   s.mag_FRD_gauss = vec(mag.mag_FRD_gauss);
+  if (mag_swing_rad_ != 0) {  // --fault ekf-not-converging: the field turned about body down (FRD z)
+    mag_swing_right_ = !mag_swing_right_;
+    s.mag_FRD_gauss = Eigen::AngleAxisd(mag_swing_right_ ? mag_swing_rad_ : -mag_swing_rad_, Eigen::Vector3d::UnitZ()) *
+                      s.mag_FRD_gauss;
+  }
   impl_->core.handle_mag(s);
 }
 
@@ -97,7 +103,32 @@ void FlightAdapter::on_sticks(double roll, double pitch, double yaw, double thro
   impl_->core.handle_sticks(s);
 }
 
-CommandResult FlightAdapter::arm(bool force, uint64_t) { return reply(impl_->core.arm(force)); }
+CommandResult FlightAdapter::arm(bool force, uint64_t) {
+  if (const auto failure = calibration_failure(); !force && !failure.empty()) return {mavlink::MavResult::Denied, failure};
+  return reply(impl_->core.arm(force));
+}
+
+std::string FlightAdapter::calibration_failure() const {
+  struct Check {
+    const char* param;
+    uint32_t device_id;
+    const char* sensor;
+  };
+  static constexpr Check kChecks[] = {{"CAL_ACC0_ID", kDeviceIdImu, "Accel 0"},
+                                      {"CAL_GYRO0_ID", kDeviceIdImu, "Gyro 0"},
+                                      {"CAL_MAG0_ID", kDeviceIdMag, "Compass 0"}};
+  for (const auto& c : kChecks) {
+    const auto* p = params_.get(c.param);
+    if (p != nullptr && p->as_double() != static_cast<double>(c.device_id))
+      return std::string("Preflight Fail: ") + c.sensor + " uncalibrated";
+  }
+  return "";
+}
+
+std::string FlightAdapter::commander_check() const {
+  const auto s = state();
+  return s.ready_to_arm ? "Preflight check: OK\n" : s.not_ready_reason + "\nPreflight check: FAILED\n";
+}
 CommandResult FlightAdapter::disarm(bool force, uint64_t) { return reply(impl_->core.disarm(force)); }
 CommandResult FlightAdapter::land(uint64_t) { return reply(impl_->core.land()); }
 
@@ -129,8 +160,9 @@ FlightState FlightAdapter::state() const {
   s.base_mode = core.base_mode();
   s.mode_name = flight::to_string(core.mode());
   s.landed = static_cast<mavlink::MavLandedState>(core.landed_state());
-  s.ready_to_arm = ready.ready;
-  s.not_ready_reason = ready.reason;
+  const std::string calibration = calibration_failure();
+  s.ready_to_arm = ready.ready && calibration.empty();
+  s.not_ready_reason = calibration.empty() ? ready.reason : calibration;
   s.attitude_valid = e.attitude_valid;
   s.local_valid = e.xy_valid && e.z_valid;
   s.global_valid = e.global_valid;

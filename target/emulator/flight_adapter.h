@@ -59,6 +59,7 @@ class FlightAdapter {
   /// MANUAL_CONTROL, PX4-normalised: roll, pitch (+ forward), yaw (+ clockwise) -1..1, throttle 0..1.
   void on_sticks(double roll, double pitch, double yaw, double throttle, uint64_t now_us);
 
+  /// Refused unless forced while the preflight checks fail (calibration first, then the estimator's).
   CommandResult arm(bool force, uint64_t now_us);
   CommandResult disarm(bool force, uint64_t now_us);
   CommandResult takeoff(double altitude_amsl_m, uint64_t now_us);  ///< NaN: MIS_TAKEOFF_ALT above home
@@ -73,11 +74,23 @@ class FlightAdapter {
   /// Messages the flight stack wants to tell the operator (mode changes, landing, auto-disarm).
   std::vector<std::string> take_messages();
   std::string commander_status() const;
+  /// `commander check`: "Preflight check: OK", or each failure and "Preflight check: FAILED".
+  std::string commander_check() const;
+  /// Fault injection (hitl target --fault ekf-not-converging, faults.h): every magnetometer sample
+  /// turned by `angle_rad` about body down, alternately one way and the other.
+  void inject_mag_swing(double angle_rad) { mag_swing_rad_ = angle_rad; }
   std::string ekf2_status() const;
 
  private:
+  /// PX4's calibration check: CAL_ACC0_ID / CAL_GYRO0_ID / CAL_MAG0_ID must be dsp_hitl's device
+  /// IDs, else that sensor is uncalibrated ("Preflight Fail: Accel 0 uncalibrated"); empty when fine.
+  std::string calibration_failure() const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  const ParamStore& params_;
+  double mag_swing_rad_ = 0;
+  bool mag_swing_right_ = false;
 };
 
 }  // namespace hitl::target

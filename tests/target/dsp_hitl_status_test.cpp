@@ -129,5 +129,82 @@ TEST(DspHitlStatus, FollowsTheRepublisher) {
             "  BARO updates published: 0\n");
 }
 
+// --- reading the text back (the dashboard's dsp_hitl panel, polled through the shell) -----------
+
+TEST(DspHitlStatusParse, ReadsTheSpecText) {
+  DspHitlStatusReport r;
+  std::string error;
+  ASSERT_TRUE(parse_dsp_hitl_status(kSpecStatus, &r, &error)) << error;
+  EXPECT_TRUE(r.running);
+  EXPECT_EQ(r.counters.hil_imu_received, 12453U);
+  EXPECT_EQ(r.counters.imu_published, 12450U);
+  EXPECT_EQ(r.counters.hil_mag_baro_received, 4980U);
+  EXPECT_EQ(r.counters.mag_published, 4975U);
+  EXPECT_EQ(r.counters.baro_published, 995U);
+  EXPECT_TRUE(r.current.imu_received);
+  EXPECT_FLOAT_EQ(r.current.accel_FRD_m_s2[2], -9.859F);
+  EXPECT_FLOAT_EQ(r.current.gyro_FRD_rad_s[0], -0.006F);
+}
+
+TEST(DspHitlStatusParse, RoundTripsTheFormatterIncludingNoDataAndHugeCounters) {
+  DspHitl d;
+  DspHitlStatusReport r;
+  std::string error;
+  ASSERT_TRUE(parse_dsp_hitl_status(d.status_text(), &r, &error)) << error;
+  EXPECT_FALSE(r.running);
+  EXPECT_FALSE(r.current.imu_received);
+  EXPECT_EQ(r.counters.baro_published, 0U);
+
+  DspHitlCounters c = spec_counters();
+  c.hil_imu_received = 5000000000ULL;
+  ASSERT_TRUE(parse_dsp_hitl_status(dsp_hitl_status_text(true, c, spec_current()), &r, &error)) << error;
+  EXPECT_EQ(r.counters.hil_imu_received, 5000000000ULL);
+}
+
+TEST(DspHitlStatusParse, ToleratesCarriageReturnsPrefixesAndExtraLines) {
+  // What a shell may add: CRLF line ends, a log prefix per line, a trailing prompt.
+  std::string text = "INFO  [qshell] Send cmd: 'dsp_hitl status'\r\n";
+  std::string spec = kSpecStatus;
+  for (std::size_t at = 0; (at = spec.find('\n', at)) != std::string::npos; at += 2) spec.replace(at, 1, "\r\n");
+  text += spec + "INFO  [qshell] qshell return value timestamp: 1234, local time: 1240\r\npxh> ";
+  DspHitlStatusReport r;
+  std::string error;
+  ASSERT_TRUE(parse_dsp_hitl_status(text, &r, &error)) << error;
+  EXPECT_EQ(r.counters.mag_published, 4975U);
+  EXPECT_TRUE(r.running);
+}
+
+TEST(DspHitlStatusParse, NamesWhatIsMissingOrMalformed) {
+  DspHitlStatusReport r;
+  std::string error;
+  EXPECT_FALSE(parse_dsp_hitl_status("nsh: dsp_hitl: command not found\n", &r, &error));
+  EXPECT_NE(error.find("Running"), std::string::npos) << error;
+
+  std::string truncated = kSpecStatus;
+  truncated.resize(truncated.find("  BARO updates"));
+  EXPECT_FALSE(parse_dsp_hitl_status(truncated, &r, &error));
+  EXPECT_NE(error.find("BARO updates published"), std::string::npos) << error;
+
+  std::string garbled = kSpecStatus;
+  garbled.replace(garbled.find("12450"), 5, "12x50");
+  EXPECT_FALSE(parse_dsp_hitl_status(garbled, &r, &error));
+  EXPECT_NE(error.find("IMU updates published"), std::string::npos) << error;
+
+  std::string negative = kSpecStatus;
+  negative.replace(negative.find("995"), 3, "-1");
+  EXPECT_FALSE(parse_dsp_hitl_status(negative, &r, &error));
+
+  std::string overflow = kSpecStatus;
+  overflow.replace(overflow.find("995"), 3, "99999999999999999999999");
+  EXPECT_FALSE(parse_dsp_hitl_status(overflow, &r, &error));
+
+  std::string bad_vector = kSpecStatus;
+  bad_vector.replace(bad_vector.find("-0.257, 0.151"), 13, "-0.257; 0.151");
+  EXPECT_FALSE(parse_dsp_hitl_status(bad_vector, &r, &error));
+  EXPECT_NE(error.find("accel"), std::string::npos) << error;
+
+  EXPECT_FALSE(parse_dsp_hitl_status("", &r, &error));
+}
+
 }  // namespace
 }  // namespace hitl::target

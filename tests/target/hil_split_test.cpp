@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "target/core/hil_sensor_fields.h"
 
@@ -241,6 +243,69 @@ TEST(HilSplit, LatePollResyncsWithoutBurst) {
   EXPECT_FALSE(split.poll(30000).imu);
   EXPECT_EQ(split.counters().imu_published, 2U);
   EXPECT_GE(split.counters().resyncs, 1U);
+}
+
+TEST(HilSplit, PollTimeoutIsTheWaitToTheNextDueRoundedUpToWholeMs) {
+  HilSplit split;  // IMU grid half a period after the first arrival
+  EXPECT_EQ(split.poll_timeout_ms(0, 10), 10);  // nothing live: the loop's own timeout
+  split.on_hil_sensor(sensor(kImu | f::kMag), 1000);
+  EXPECT_EQ(split.poll_timeout_ms(1000, 10), 0);  // mag/baro and battery are due at once
+  split.poll(1000);
+  EXPECT_EQ(split.poll_timeout_ms(1000, 10), 2);  // the IMU at 3000
+  EXPECT_EQ(split.poll_timeout_ms(1500, 10), 2);  // 1.5 ms rounds up: at most 1 ms late, never early
+  EXPECT_EQ(split.poll_timeout_ms(2999, 10), 1);
+  EXPECT_EQ(split.poll_timeout_ms(3000, 10), 0);
+  EXPECT_EQ(split.poll_timeout_ms(1000, 1), 1);   // capped by the caller's timeout
+  EXPECT_EQ(split.poll_timeout_ms(1000, -5), 0);  // a negative cap is no wait, not poll's "forever"
+  // The host goes quiet: each stream stops at its first due time past the 100 ms hold limit (the
+  // battery's at 201000), then the loop's own timeout again.
+  for (uint64_t t = 2000; t <= 201000; t += 1000) split.poll(t);
+  EXPECT_EQ(split.poll_timeout_ms(201000, 10), 10);
+}
+
+// PX4's MavlinkReceiver with the patch: poll(2) for at most poll_timeout_ms, publish what is due,
+// then hand over what arrived. With a 250 Hz host jittering by up to +-0.8 ms every HIL_SENSOR is
+// published exactly once, at most 1 ms after its due time.
+TEST(HilSplit, ReceiveLoopPublishesEveryArrivalOnceOnTime) {
+  HilSplit split;
+  constexpr int kArrivals = 1000;
+  std::vector<uint64_t> arrivals_us;
+  uint32_t lcg = 12345;  // a fixed jitter sequence, the same on every standard library
+  for (int k = 0; k < kArrivals; ++k) {
+    lcg = lcg * 1664525U + 1013904223U;
+    const int64_t jitter_us = (k == 0) ? 0 : static_cast<int64_t>(lcg >> 16) % 1601 - 800;
+    arrivals_us.push_back(static_cast<uint64_t>(1000000 + 4000 * k + jitter_us));
+  }
+  uint64_t now_us = 0;
+  std::size_t next = 0;
+  uint64_t published = 0;
+  uint64_t max_late_us = 0;
+  uint64_t due_us = UINT64_MAX;
+  int iterations = 0;
+  while ((next < arrivals_us.size() || split.next_due_us() != UINT64_MAX) && ++iterations < 100000) {
+    const int timeout_ms = split.poll_timeout_ms(now_us, 10);
+    uint64_t wake_us = now_us + static_cast<uint64_t>(timeout_ms) * 1000U;
+    if (next < arrivals_us.size() && arrivals_us[next] < wake_us) wake_us = arrivals_us[next];
+    now_us = std::max(now_us, wake_us);
+    due_us = split.next_due_us();
+    const HilSplitOutput out = split.poll(now_us);
+    if (out.imu) {
+      ++published;
+      max_late_us = std::max(max_late_us, now_us - due_us);
+    }
+    while (next < arrivals_us.size() && arrivals_us[next] <= now_us) {
+      split.on_hil_sensor(sensor(kImu, static_cast<float>(next)), now_us);
+      ++next;
+    }
+  }
+  ASSERT_LT(iterations, 100000) << "the loop did not end; now " << now_us << " us";
+  const HilSplitCounters c = split.counters();
+  EXPECT_EQ(c.imu_overwritten, 0U);
+  EXPECT_EQ(c.resyncs, 0U);
+  // Every arrival once, then the last values repeated until the 100 ms hold limit ends the stream.
+  EXPECT_EQ(published - c.imu_repeated, static_cast<uint64_t>(kArrivals));
+  EXPECT_LE(c.imu_repeated, 26U);
+  EXPECT_LE(max_late_us, 1000U);
 }
 
 }  // namespace
