@@ -27,7 +27,7 @@ struct InspectOptions {
   std::string connect;
   std::string tlog;
   std::string bind = "0.0.0.0";
-  uint16_t local_port = 14562;
+  uint16_t local_port = kDirectLocalPort;
   std::string record;
   std::vector<std::string> show;
   bool follow = false;

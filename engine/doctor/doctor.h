@@ -18,8 +18,8 @@ namespace hitl::doctor {
 
 struct DoctorOptions {
   vehicle::LinkOptions link;      ///< -i, --port, --connect, --session-port, ... (cli/link_options)
-  uint16_t hil_port = 14560;      ///< --hil-port: the board's HIL instance
-  uint16_t vio_port = 14570;      ///< --vio-port: voxl-hitl-vio-server
+  uint16_t hil_port = kBoardHilPort;  ///< --hil-port: the board's HIL instance
+  uint16_t vio_port = kBoardVioPort;  ///< --vio-port: voxl-hitl-vio-server
   bool vio = true;                ///< --no-vio: VIO not used, its checks skipped
   bool adb = false;               ///< --adb: check adb devices and use adb shell for the VIO checks
   std::string adb_serial;         ///< --adb-serial (implies --adb)

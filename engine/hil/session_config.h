@@ -12,13 +12,14 @@
 #include "engine/model/world_config.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/vehicle/trajectory_pilot.h"
+#include "target/core/board_ports.h"
 
 namespace hitl::hil {
 
-inline constexpr uint16_t kBoardHilPort = 14560;     ///< the board's HIL MAVLink instance
-inline constexpr uint16_t kSimLocalPort = 14561;     ///< the simulator's fixed local port
-inline constexpr uint16_t kBoardVioPort = 14570;     ///< voxl-hitl-vio-server
-inline constexpr uint16_t kSessionClientPort = 14600;  ///< local clients while a session runs
+using ::hitl::kBoardHilPort;       // the port table: target/core/board_ports.h
+using ::hitl::kBoardVioPort;
+using ::hitl::kSessionClientPort;
+using ::hitl::kSimLocalPort;
 inline constexpr uint16_t kPx4SitlTcpPort = 4560;    ///< PX4 SITL's simulator_mavlink (instance 0)
 inline constexpr double kStepPeriod_s = 0.004;       ///< physics step and HIL_SENSOR period
 inline constexpr double kVioRate_hz = 250.0;

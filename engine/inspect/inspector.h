@@ -12,6 +12,7 @@
 
 #include "engine/common/expected.h"
 #include "engine/mavlink/frame_encoder.h"
+#include "target/core/board_ports.h"
 #include "engine/mavlink/frame_parser.h"
 #include "engine/mavlink/message_set.h"
 #include "engine/mavlink/tlog.h"
@@ -26,7 +27,7 @@ struct InspectConfig {
   std::string bind_address = "0.0.0.0";  ///< --bind (Port)
   uint16_t port = 0;                      ///< --port: listen passively
   std::string connect;                    ///< --connect HOST:PORT: send HEARTBEAT at 1 Hz so a PX4 instance streams to us
-  uint16_t local_port = 14562;            ///< --local-port (Connect): fixed, since PX4 keeps the first port it hears
+  uint16_t local_port = kDirectLocalPort;  ///< --local-port (Connect): fixed, since PX4 keeps the first port it hears
   std::string tlog_path;                  ///< --tlog FILE: offline, as fast as it reads
   std::string record_path;                ///< --record FILE.tlog: save every frame received
   double duration_s = 0;                  ///< --duration: 0 = until stopped (tlog: log time)

@@ -21,18 +21,19 @@
 #include "engine/mavlink/messages.h"
 #include "engine/net/tcp_client.h"
 #include "engine/net/udp_endpoint.h"
+#include "target/core/board_ports.h"
 
 namespace hitl::vehicle {
 
-inline constexpr uint16_t kDirectLocalPort = 14562;  ///< direct commands always talk from here
-inline constexpr uint16_t kBoardGcsPort = 14558;
+using ::hitl::kBoardGcsPort;     // the port table: target/core/board_ports.h
+using ::hitl::kDirectLocalPort;  // direct commands always talk from here
 
 struct LinkOptions {
   std::string connect = "auto";           ///< --connect
   std::string target_ip = "127.0.0.1";    ///< -i: the board for auto's direct path
   uint16_t gcs_port = kBoardGcsPort;      ///< --port: the board's GCS instance
   uint16_t local_port = kDirectLocalPort; ///< --local-port
-  uint16_t session_port = 14600;          ///< a running session's client port
+  uint16_t session_port = kSessionClientPort;  ///< a running session's client port
   std::optional<uint8_t> sysid;           ///< --sysid: pick this autopilot among several
   double timeout_s = 5.0;                 ///< --timeout: discovery
   uint8_t own_sysid = 255;                ///< our identity: a ground station

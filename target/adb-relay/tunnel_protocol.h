@@ -15,6 +15,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "target/core/board_ports.h"
+
 namespace hitl::adb {
 
 /// Bumped whenever the stream's format changes; both ends must speak the same one.
@@ -28,7 +30,7 @@ inline constexpr std::size_t kFrameHeaderSize_bytes = 3;  ///< 2 length + 1 chan
 inline constexpr std::size_t kMaxDatagram_bytes = 8192;
 
 /// The relay's TCP port on the board (`adb forward tcp:LOCAL tcp:14590`).
-inline constexpr uint16_t kRelayTcpPort = 14590;
+inline constexpr uint16_t kRelayTcpPort = kAdbRelayTcpPort;
 /// Where a relay pushed by hitl lives on the board when the board package is not installed.
 inline constexpr const char* kPushedRelayPath = "/tmp/hitl-adb-relay";
 /// Where a relay started with --daemon (as hitl starts it) logs, unless told otherwise.
@@ -59,15 +61,12 @@ inline constexpr const char* to_string(Channel c) {
   return "?";
 }
 
-/// The board's UDP ports each channel reaches (the spec's port table, DESIGN.md §4).
-inline constexpr uint16_t kBoardHilPort = 14560;
-inline constexpr uint16_t kBoardVioPort = 14570;
-inline constexpr uint16_t kBoardGcsPort = 14558;
-/// The relay's own source ports toward them. A PX4 MAVLink instance keeps the first sender it heard
-/// until it restarts, so the relay always sends from the same ports, the ones the simulator (14561)
-/// and direct commands (14562) use on the host; a restarted relay is answered again at once.
-inline constexpr uint16_t kRelayHilSourcePort = 14561;
-inline constexpr uint16_t kRelayGcsSourcePort = 14562;
+/// The relay's own source ports toward the board's ports (kBoardHilPort, kBoardVioPort,
+/// kBoardGcsPort). A PX4 MAVLink instance keeps the first sender it heard until it restarts, so the
+/// relay always sends from the same ports, the ones the simulator and direct commands use on the
+/// host; a restarted relay is answered again at once.
+inline constexpr uint16_t kRelayHilSourcePort = kSimLocalPort;
+inline constexpr uint16_t kRelayGcsSourcePort = kDirectLocalPort;
 
 /// Control channel messages: type (u8) | value (u64), 9 bytes.
 enum class ControlType : uint8_t {

@@ -11,17 +11,18 @@
 #include <string>
 
 #include "engine/common/expected.h"
+#include "target/core/board_ports.h"
 #include "target/emulator/faults.h"
 
 namespace hitl::target {
 
-inline constexpr uint16_t kBoardGcsPort = 14558;  ///< the tertiary (GCS forwarding) instance
+using ::hitl::kBoardGcsPort;  // the port table: target/core/board_ports.h
 
 struct BoardConfig {
   std::string bind_address = "0.0.0.0";  ///< --bind
-  uint16_t hil_port = 14560;              ///< --hil-port: the primary (HIL) instance
+  uint16_t hil_port = kBoardHilPort;      ///< --hil-port: the primary (HIL) instance
   uint16_t gcs_port = kBoardGcsPort;      ///< --gcs-port: the GCS instance (0: none)
-  uint16_t vio_port = 14570;              ///< --vio-port: voxl-hitl-vio-server's listener (0: none)
+  uint16_t vio_port = kBoardVioPort;      ///< --vio-port: voxl-hitl-vio-server's listener (0: none)
   bool lockstep = false;   ///< --lockstep: the board's clock is HIL_SENSOR.time_usec and each HIL_SENSOR gets one answer
   double duration_s = 0;   ///< --duration: stop after this much board time (0: until stopped)
   uint8_t sysid = 1;
