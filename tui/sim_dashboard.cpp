@@ -3,74 +3,24 @@
 #include <cmath>
 #include <numeric>
 
-#include "engine/vehicle/patient_link.h"
-#include "target/core/hil_split.h"
 #include "tui/collect.h"
 #include "tui/draw.h"
 
 namespace hitl::tui {
-namespace {
-
-vehicle::OperatorCommand command_for(Action a) {
-  switch (a) {
-    case Action::Arm: return vehicle::OperatorCommand::Arm;
-    case Action::Disarm: return vehicle::OperatorCommand::Disarm;
-    case Action::ForceDisarm: return vehicle::OperatorCommand::ForceDisarm;
-    case Action::Takeoff: return vehicle::OperatorCommand::Takeoff;
-    case Action::Land: return vehicle::OperatorCommand::Land;
-    case Action::TogglePause:
-    case Action::ResetHome:
-    case Action::FlyTrajectory:
-    case Action::StopTrajectory:
-    case Action::Shell: break;
-  }
-  return vehicle::OperatorCommand::Arm;  // not reached: perform() routes only the five above here
-}
-
-/// The board's dsp_hitl counters at real time: the spec's split (hil_sensor_imu 250 Hz,
-/// hil_sensor_mag_baro 100 Hz) and the simulator's mag and baro rates.
-telemetry::DspHitlExpectedRates dsp_hitl_rates(const hil::SessionConfig& c) {
-  const target::HilSplitConfig split;
-  telemetry::DspHitlExpectedRates r;
-  r.imu_received_hz = 1e6 / static_cast<double>(split.imu_period_us);
-  r.imu_published_hz = r.imu_received_hz;
-  r.mag_baro_received_hz = 1e6 / static_cast<double>(split.mag_baro_period_us);
-  r.mag_published_hz = c.vehicle.sensors.mag.rate_hz;
-  r.baro_published_hz = c.vehicle.sensors.baro.rate_hz;
-  return r;
-}
-
-}  // namespace
 
 SimDashboard::SimDashboard(hil::Session& session, const hil::SessionConfig& config, SimDashboardConfig dashboard)
-    : session_(session), config_(config), dashboard_(std::move(dashboard)) {
+    : session_(session),
+      config_(config),
+      dashboard_(std::move(dashboard)),
+      board_(config_.clients_port, config_.sysid, dsp_hitl_rates(config_.vehicle.sensors), log_) {
   log_.add(Severity::Info, "hitl sim: " + session_.describe() + "; ? for the keys");
-  if (config_.clients_port == 0) {
-    log_.add(Severity::Warning, "--clients 0: no client port, so the dashboard cannot reach the board (vehicle, EKF, "
-                                "dsp_hitl and the keys that act are off)");
-    return;
-  }
-  const auto link = vehicle::session_client_options(config_.clients_port);
-  feed_ = std::make_unique<vehicle::TelemetryFeed>(
-      link, vehicle::dashboard_streams(),
-      [this](mavlink::MavSeverity s, const std::string& text) { log_.add(severity_from_mavlink(static_cast<uint8_t>(s)), text); }, config_.sysid);
-  shell_ = std::make_unique<vehicle::ShellPoller>(
-      link, dsp_hitl_rates(config_), 1.0, [this](const std::string& command, bool ok, const std::string& output) {
-        log_.add(Severity::Notice, "shell> " + command);
-        if (ok) log_.add_lines(Severity::Info, output);
-        else log_.add(Severity::Error, output);
-      });
-  commands_ = std::make_unique<vehicle::CommandWorker>(
-      link, [this](vehicle::OperatorCommand, bool ok, const std::string& text) { log_.add(ok ? Severity::Notice : Severity::Error, text); });
 }
 
 SimDashboard::~SimDashboard() { shutdown(); }
 
 void SimDashboard::shutdown() {
   trajectory_.stop();
-  if (commands_) commands_->stop();
-  if (shell_) shell_->stop();
-  if (feed_) feed_->stop();
+  board_.stop();
 }
 
 void SimDashboard::on_event(const hil::SessionEvent& event) {
@@ -89,13 +39,6 @@ std::optional<std::string> SimDashboard::finished() {
   return finished_;
 }
 
-std::optional<std::string> SimDashboard::link_refusal() const {
-  if (!feed_) return "no client port (--clients 0): the dashboard cannot reach the board";
-  const auto f = feed_->snapshot();
-  if (!f.connected) return "no autopilot yet (" + f.link + ")";
-  return std::nullopt;
-}
-
 std::optional<std::string> SimDashboard::refusal(Action action) const {
   switch (action) {
     case Action::TogglePause:
@@ -106,16 +49,13 @@ std::optional<std::string> SimDashboard::refusal(Action action) const {
     case Action::FlyTrajectory:
       if (dashboard_.trajectory_file.empty()) return "no trajectory file: start hitl sim --tui with -t FILE.json";
       if (dashboard_.hitl_binary.empty()) return "cannot find the hitl program to run `hitl fly trajectory`";
-      return link_refusal();
+      return board_.link_refusal();
     case Action::Arm:
     case Action::Disarm:
     case Action::ForceDisarm:
     case Action::Takeoff:
     case Action::Land:
-      if (auto why = link_refusal()) return why;
-      if (commands_->pending() >= 3) return "three commands are already waiting for their ACK";
-      return std::nullopt;
-    case Action::Shell: return link_refusal();
+    case Action::Shell: return board_.refusal(action);
   }
   return std::nullopt;
 }
@@ -124,7 +64,6 @@ void SimDashboard::perform(Action action, const std::string& argument) {
   switch (action) {
     case Action::TogglePause: session_.set_paused(!session_.snapshot().paused); return;
     case Action::ResetHome: session_.request_reset(); return;
-    case Action::Shell: shell_->run_command(argument); return;
     case Action::StopTrajectory:
       log_.add(Severity::Notice, "stopping the trajectory (SIGINT to hitl fly)");
       trajectory_.stop();
@@ -152,9 +91,7 @@ void SimDashboard::perform(Action action, const std::string& argument) {
     case Action::ForceDisarm:
     case Action::Takeoff:
     case Action::Land:
-      log_.add(Severity::Info, std::string(to_string(action)) + " ...");
-      commands_->submit(command_for(action));
-      return;
+    case Action::Shell: board_.perform(action, argument); return;
   }
 }
 
@@ -181,22 +118,8 @@ DashboardModel SimDashboard::collect() {
   // The truth's altitude above the rest pose (the vehicle starts at rest at home).
   if (!rest_altitude_m_ && s.steps > 0) rest_altitude_m_ = s.altitude_m;
 
-  if (feed_) {
-    const auto f = feed_->snapshot();
-    m.ekf = ekf_from(f);
-    m.vehicle = vehicle_from(f);
-    m.dsp_hitl = dsp_hitl_from(shell_->dsp_hitl(), pace);
-    if (commands_->pending() > 0) m.busy = "command in flight";
-  } else {
-    const std::string why = "no client port (--clients 0)";
-    m.ekf = EkfPanel{};
-    m.ekf->unavailable = why;
-    m.vehicle = VehiclePanel{};
-    m.vehicle->unavailable = why;
-    m.vehicle->armed = s.armed;
-    m.dsp_hitl = DspHitlPanel{};
-    m.dsp_hitl->unavailable = why;
-  }
+  board_.fill(m, pace);
+  if (config_.clients_port == 0) m.vehicle->armed = s.armed;  // no autopilot link: the actuator flags' armed bit
   if (m.vehicle->landed.empty()) m.vehicle->in_air = !s.on_ground;  // the autopilot has not said: the truth
   m.vehicle->motors = s.motor_commands;
   m.vehicle->rotor_speed_rad_s = s.rotor_speed_rad_s;

@@ -1,8 +1,7 @@
 // `hitl sim --tui`: the session's snapshots (data paths, truth, rotors, link), the vehicle's
-// telemetry and the board's dsp_hitl counters read through the session's own client port (three
-// client links, each on its own thread: telemetry, shell, commands), and the keys' actions:
-// arm/disarm/takeoff/land through the command client, pause/resume and reset on the session,
-// `f` runs `hitl fly trajectory FILE` through the client port, `s` one shell command.
+// telemetry and the board's dsp_hitl counters read through the session's own client port
+// (BoardClients), and the keys' actions: arm/disarm/takeoff/land and `s` through those clients,
+// pause/resume and reset on the session, `f` runs `hitl fly trajectory FILE` through the client port.
 #pragma once
 
 #include <atomic>
@@ -12,9 +11,7 @@
 #include <string>
 
 #include "engine/hil/session.h"
-#include "engine/vehicle/command_worker.h"
-#include "engine/vehicle/shell_poller.h"
-#include "engine/vehicle/telemetry_feed.h"
+#include "tui/board_clients.h"
 #include "tui/command_runner.h"
 #include "tui/dashboard.h"
 #include "tui/message_log.h"
@@ -49,15 +46,11 @@ class SimDashboard : public DashboardSource, public DashboardActions, public hil
   void shutdown();
 
  private:
-  std::optional<std::string> link_refusal() const;
-
   hil::Session& session_;
   hil::SessionConfig config_;
   SimDashboardConfig dashboard_;
   MessageLog log_;
-  std::unique_ptr<vehicle::TelemetryFeed> feed_;
-  std::unique_ptr<vehicle::ShellPoller> shell_;
-  std::unique_ptr<vehicle::CommandWorker> commands_;
+  BoardClients board_;
   CommandRunner trajectory_;
   std::atomic<bool> trajectory_flying_{false};
   std::optional<double> rest_altitude_m_;  ///< the truth's altitude at rest (first snapshot)

@@ -140,6 +140,51 @@ TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
   board.wait(10s);
 }
 
+// `hitl bridge --tui`: the link panel shows the board up with a TIMESYNC round trip, the data
+// paths show packets each way, and `a` goes through the bridge's client port to the board, whose
+// refusal (no simulator feeds its EKF) comes back in the messages panel.
+TEST(TuiE2E, BridgeDashboardShowsTheLinkAndActsThroughItsClientPort) {
+  const std::string tmux_bin = tmux_path();
+  if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port(),
+                 local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(gcs), "--vio-port", "0"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+
+  Tmux tmux(tmux_bin);
+  const std::string bridge = quoted(test::hitl_binary()) + " bridge -i 127.0.0.1 --port " + std::to_string(gcs) +
+                             " --local-port " + std::to_string(local) + " --clients " + std::to_string(clients) +
+                             " --tui; echo HITL_EXIT=$?; sleep 60";
+  tmux.run({"new-session", "-d", "-s", "dash", "-x", "120", "-y", "40", bridge});
+
+  std::string s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("board up") != std::string::npos; }, 20s, &s)) << s;
+  EXPECT_NE(s.find("hitl bridge"), std::string::npos) << s;
+  EXPECT_NE(s.find("Link board 127.0.0.1:" + std::to_string(gcs)), std::string::npos) << s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(rtt \d+\.\d+ ms)")); }, 15s, &s)) << s;
+  // Packets from the board measured as a rate (HEARTBEAT and the streams: well above 1 per second).
+  ASSERT_TRUE(tmux.until(
+      [](const std::string& x) {
+        auto rate = number_after(x, R"(rx board\s+-\s+([0-9.]+))");
+        return rate && *rate >= 2.0;
+      },
+      15s, &s))
+      << s;
+  // The vehicle panel fills from the board through the bridge's client port.
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("on ground") != std::string::npos; }, 20s, &s)) << s;
+  tmux.keys("a");
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("arm denied") != std::string::npos; }, 20s, &s)) << s;
+  tmux.keys("p");  // no simulator to pause: refused with the reason
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("runs no simulator") != std::string::npos; }, 10s, &s)) << s;
+
+  tmux.keys("q");
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
+  EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
+  board.signal(SIGINT);
+  board.wait(10s);
+}
+
 TEST(TuiE2E, WithoutATerminalSaysSoAndFallsBack) {
   const uint16_t hil = test::free_udp_port();
   auto r = test::run_hitl({"sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
