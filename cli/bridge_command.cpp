@@ -1,9 +1,15 @@
-// hitl bridge: the board link without the simulator (engine/bridge), with link health each second.
+// hitl bridge: the board link without the simulator (engine/bridge), with link health each second;
+// --tui shows it in the dashboard, --adb reaches the board's GCS instance through adb.
 #include <cstdio>
 #include <iostream>
+#include <thread>
 
+#include "cli/adb_options.h"
 #include "cli/commands.h"
 #include "engine/bridge/bridge.h"
+#include "tui/bridge_dashboard.h"
+#include "tui/draw.h"
+#include "tui/terminal.h"
 
 namespace hitl::cli {
 namespace {
@@ -12,6 +18,8 @@ struct BridgeOptions {
   bridge::BridgeConfig config;
   std::vector<std::string> endpoints;
   double dedup_ms = 100;
+  bool tui = false;
+  AdbOptions adb;
 };
 
 std::string kilobytes(uint64_t bytes) {
@@ -83,6 +91,27 @@ class Printer : public bridge::BridgeObserver {
   const GlobalOptions& g_;
 };
 
+/// The bridge on its own thread, the dashboard on this one; q, a signal or the bridge ending close it.
+Status run_with_dashboard(const GlobalOptions& g, const bridge::BridgeConfig& config) {
+  tui::BridgeDashboard dashboard(config);
+  std::atomic<bool> stop{false};
+  Status ran = Ok{};
+  std::thread loop([&] {
+    ran = bridge::run_bridge(config, dashboard, stop);
+    dashboard.mark_finished(ran ? std::string("the bridge ended") : "error: " + ran.error().message);
+  });
+  auto shown = tui::run_dashboard(dashboard, &dashboard);
+  dashboard.shutdown();
+  stop.store(true);
+  loop.join();
+  if (!shown) return Error{"--tui: " + shown.error().message};
+  if (shown->reason == tui::DashboardEnd::Reason::Signal) std::cerr << "hitl bridge: stopped by " << shown->detail << '\n';
+  if (g.verbosity >= 1)
+    log_info(g, tui::format("hitl bridge: the dashboard drew %llu frames, %.2f ms each on average, %.2f ms at most",
+                            static_cast<unsigned long long>(shown->frames), shown->render_ms_mean, shown->render_ms_max));
+  return ran;
+}
+
 int run(const GlobalOptions& g, BridgeOptions& o) {
   for (const auto& text : o.endpoints) {
     auto spec = bridge::parse_endpoint(text);
@@ -93,9 +122,37 @@ int run(const GlobalOptions& g, BridgeOptions& o) {
     o.config.endpoints.push_back(*spec);
   }
   o.config.dedup_window_s = o.dedup_ms / 1000.0;
-  Printer printer(g);
-  const auto& stop = stop_flag_on_signals();
-  auto st = bridge::run_bridge(o.config, printer, stop);
+  if (o.tui) {
+    if (auto usable = tui::terminal_usable(); !usable) {
+      std::cerr << "hitl bridge: --tui: " << usable.error().message << "; showing the health lines instead\n";
+      o.tui = false;
+    }
+  }
+  // --adb: the board's GCS instance is the tunnel's local endpoint (docs/adb.md).
+  std::unique_ptr<net::AdbTunnel> tunnel;
+  if (o.adb.enabled()) {
+    auto opened = open_adb_tunnel(g, "bridge", o.adb);
+    if (!opened) {
+      log_error("bridge", "--adb: " + opened.error().message);
+      return kExitFailed;
+    }
+    tunnel = std::move(opened.value());
+    log_info(g, "hitl bridge: " + tunnel->describe());
+    o.config.board_ip = "127.0.0.1";
+    o.config.board_port = tunnel->local_endpoint(adb::Channel::Gcs).port();
+  }
+  Status st = Ok{};
+  if (o.tui) {
+    st = run_with_dashboard(g, o.config);
+  } else {
+    Printer printer(g);
+    const auto& stop = stop_flag_on_signals();
+    st = bridge::run_bridge(o.config, printer, stop);
+  }
+  if (tunnel) {
+    if (g.json) print_json_line({{"type", "adb"}, {"adb", adb_tunnel_json(*tunnel)}});
+    else if (!g.quiet) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
+  }
   if (!st) {
     log_error("bridge", st.error().message);
     return kExitFailed;
@@ -125,12 +182,21 @@ void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   sub->add_option("--dedup", o->dedup_ms, "Drop a frame seen again within this many ms (arriving on two paths); 0: off")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   sub->add_option("--duration", c.duration_s, "Seconds to run (0: until Ctrl-C)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  sub->add_flag("--tui", o->tui,
+                "The live dashboard (docs/tui.md): each link's packet rates, loss, rtt, HEARTBEAT age; the board's "
+                "vehicle, EKF and dsp_hitl panels; keys a arm, d disarm, t takeoff, l land, s shell, ? help, q quit. "
+                "Without a terminal: the health lines")
+      ->group("Dashboard");
+  add_adb_options(*sub, o->adb, "adb");
+  for (const char* adb_name : {"--adb", "--adb-serial"})
+    for (const char* other : {"--target-ip", "--port"}) sub->get_option(adb_name)->excludes(sub->get_option(other));
   sub->footer(
       "Health each second on stdout (--json: one object per line). The board going away and coming back is said\n"
       "on stderr within 2 s; clients keep their sockets and traffic resumes by itself.\n"
       "Examples:\n"
       "  hitl bridge -i 192.168.101.2 --endpoint udp:127.0.0.1:14550   # board + QGroundControl\n"
-      "  hitl bridge & hitl arm && hitl fly takeoff                     # commands go through the bridge");
+      "  hitl bridge & hitl arm && hitl fly takeoff                     # commands go through the bridge\n"
+      "  hitl bridge --adb --tui                                        # board over USB through adb, dashboard");
   sub->callback([&options, &state, o]() { state.exit_code = run(options, *o); });
 }
 
