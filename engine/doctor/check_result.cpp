@@ -1,5 +1,7 @@
 #include "engine/doctor/check_result.h"
 
+#include <cstdio>
+
 namespace hitl::doctor {
 
 const char* to_string(Verdict verdict) {
@@ -24,6 +26,12 @@ DoctorSummary summarize(const std::vector<CheckResult>& results) {
     }
   }
   return s;
+}
+
+std::string fixed(double v, int digits) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
 }
 
 }  // namespace hitl::doctor

@@ -30,4 +30,7 @@ struct DoctorSummary {
 
 DoctorSummary summarize(const std::vector<CheckResult>& results);
 
+/// A figure for a check's "seen" text: `v` with `digits` decimals.
+std::string fixed(double v, int digits);
+
 }  // namespace hitl::doctor

@@ -20,12 +20,6 @@ std::string hex(uint32_t v, int digits) {
   return buf;
 }
 
-std::string fixed(double v, int digits) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 const char* kRestartPx4 = "adb shell voxl-px4-hitl start";
 
 }  // namespace

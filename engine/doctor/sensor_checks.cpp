@@ -10,12 +10,6 @@
 namespace hitl::doctor {
 namespace {
 
-std::string fixed(double v, int digits) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 std::optional<target::DspHitlStatusReport> parse(const DspHitlRead& r, std::string* why) {
   if (!r.text) {
     *why = r.text.error().message;

@@ -10,12 +10,6 @@
 namespace hitl::doctor {
 namespace {
 
-std::string fixed(double v, int digits) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 const char* kNoSession = "no session";
 
 }  // namespace

@@ -10,12 +10,6 @@
 namespace hitl::doctor {
 namespace {
 
-std::string fixed(double v, int digits) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 std::string trimmed(const std::string& s) {
   const auto b = s.find_first_not_of(" \r\n\t");
   if (b == std::string::npos) return "";
