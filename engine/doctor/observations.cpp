@@ -50,22 +50,10 @@ void ObservationTracker::on_autopilot_frame(const mavlink::Frame& f, double now_
                                        m.onboard_control_sensors_health};
       break;
     }
-    case msg::EstimatorStatus::kId: {
-      const auto m = f.as<msg::EstimatorStatus>();
-      EstimatorStatusSeen e;
-      e.flags = m.flags;
-      e.vel_ratio = m.vel_ratio;
-      e.pos_horiz_ratio = m.pos_horiz_ratio;
-      e.pos_vert_ratio = m.pos_vert_ratio;
-      e.mag_ratio = m.mag_ratio;
-      e.hagl_ratio = m.hagl_ratio;
-      e.tas_ratio = m.tas_ratio;
-      e.pos_horiz_accuracy_m = m.pos_horiz_accuracy;
-      e.pos_vert_accuracy_m = m.pos_vert_accuracy;
-      seen_.estimator = e;
+    case msg::EstimatorStatus::kId:
+      seen_.estimator = telemetry::estimator_status_from(f);
       ++seen_.estimator_reports;
       break;
-    }
     case msg::Statustext::kId: {
       seen_.statustext.push_back(text_of(f.as<msg::Statustext>().text));
       if (seen_.statustext.size() > 50) seen_.statustext.erase(seen_.statustext.begin());

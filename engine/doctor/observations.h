@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/mavlink/frame.h"
+#include "engine/telemetry/vehicle_telemetry.h"
 
 namespace hitl::doctor {
 
@@ -25,11 +26,7 @@ struct SysStatusSeen {
   uint32_t present = 0, enabled = 0, health = 0;
 };
 
-struct EstimatorStatusSeen {
-  uint16_t flags = 0;
-  double vel_ratio = 0, pos_horiz_ratio = 0, pos_vert_ratio = 0, mag_ratio = 0, hagl_ratio = 0, tas_ratio = 0;
-  double pos_horiz_accuracy_m = 0, pos_vert_accuracy_m = 0;
-};
+using EstimatorStatusSeen = telemetry::EstimatorStatusValues;  // decoded once: estimator_status_from()
 
 /// A running session's status (each value the latest; nullopt before it was heard).
 struct SessionStatus {

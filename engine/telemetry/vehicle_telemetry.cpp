@@ -12,6 +12,21 @@ namespace {
 namespace msg = mavlink::msg;
 }
 
+EstimatorStatusValues estimator_status_from(const mavlink::Frame& f) {
+  const auto m = f.as<msg::EstimatorStatus>();
+  EstimatorStatusValues e;
+  e.flags = m.flags;
+  e.vel_ratio = m.vel_ratio;
+  e.pos_horiz_ratio = m.pos_horiz_ratio;
+  e.pos_vert_ratio = m.pos_vert_ratio;
+  e.mag_ratio = m.mag_ratio;
+  e.hagl_ratio = m.hagl_ratio;
+  e.tas_ratio = m.tas_ratio;
+  e.pos_horiz_accuracy_m = m.pos_horiz_accuracy;
+  e.pos_vert_accuracy_m = m.pos_vert_accuracy;
+  return e;
+}
+
 std::string landed_state_name(uint8_t landed_state) {
   switch (static_cast<mavlink::MavLandedState>(landed_state)) {
     case mavlink::MavLandedState::Undefined: return "undefined";
@@ -72,19 +87,7 @@ void VehicleTelemetryTracker::on_frame(const mavlink::Frame& f, double now_s) {
       else s.battery_remaining_pct.reset();
       break;
     }
-    case msg::EstimatorStatus::kId: {
-      const auto m = f.as<msg::EstimatorStatus>();
-      EstimatorStatusValues e;
-      e.flags = m.flags;
-      e.vel_ratio = m.vel_ratio;
-      e.pos_horiz_ratio = m.pos_horiz_ratio;
-      e.pos_vert_ratio = m.pos_vert_ratio;
-      e.mag_ratio = m.mag_ratio;
-      e.pos_horiz_accuracy_m = m.pos_horiz_accuracy;
-      e.pos_vert_accuracy_m = m.pos_vert_accuracy;
-      s.estimator = e;
-      break;
-    }
+    case msg::EstimatorStatus::kId: s.estimator = estimator_status_from(f); break;
     case msg::LocalPositionNed::kId: {
       const auto m = f.as<msg::LocalPositionNed>();
       s.p_NED_m = std::array<double, 3>{m.x, m.y, m.z};

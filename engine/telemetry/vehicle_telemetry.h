@@ -20,9 +20,14 @@ struct EstimatorStatusValues {
   double pos_horiz_ratio = 0;
   double pos_vert_ratio = 0;
   double mag_ratio = 0;
+  double hagl_ratio = 0;
+  double tas_ratio = 0;
   double pos_horiz_accuracy_m = 0;
   double pos_vert_accuracy_m = 0;
 };
+
+/// The values of an ESTIMATOR_STATUS frame (`f` must be one), for every reader of that message.
+EstimatorStatusValues estimator_status_from(const mavlink::Frame& f);
 
 struct VehicleTelemetry {
   // HEARTBEAT
