@@ -7,6 +7,7 @@
 # 2. configures PX4 (PX4_CONFIG) in PX4_DIR/build/PX4_CONFIG with target/px4 as
 #    EXTERNAL_MODULES_LOCATION (msg/: the two uORB messages; src/: target/core, the receiver side of
 #    the split, the dsp_hitl module), for px4_sitl_* configurations with HITL_HIL_SPLIT_ANY_BOARD=ON,
+#    and a python that has PX4's modules (configure_px4.cmake, px4_python.cmake),
 # 3. builds it with PX4_BUILD_JOBS jobs.
 # Without PX4_DIR the target only says it was skipped (CI has no PX4). docs/px4-module.md.
 # Included from target/CMakeLists.txt: no return() here, it would end the includer too.
@@ -36,18 +37,9 @@ else()
 	if(NOT PX4_CONFIG MATCHES "^[a-z0-9]+_[a-z0-9_]+$")
 		message(FATAL_ERROR "PX4_CONFIG '${PX4_CONFIG}' is not a PX4 configuration name (vendor_model[_label], e.g. px4_sitl_nolockstep)")
 	endif()
-	# Python with PX4's requirements: the system one first (a pyenv or venv python often lacks them).
-	find_program(PX4_PYTHON_EXECUTABLE python3 HINTS /usr/bin DOC "Python 3 with PX4's requirements (empy, jinja2, pyyaml, ...)")
-	if(NOT PX4_PYTHON_EXECUTABLE)
-		message(FATAL_ERROR "px4_hitl: no python3 for the PX4 build (set PX4_PYTHON_EXECUTABLE)")
-	endif()
-	find_program(HITL_NINJA ninja)
-	if(HITL_NINJA)
-		set(px4_generator Ninja)
-	else()
-		set(px4_generator "Unix Makefiles")
-	endif()
-
+	# PX4's python: PX4_PYTHON_EXECUTABLE, or found when px4_hitl runs (px4_python.cmake says what a
+	# python lacks). Empty by default: the system python3 first, then python3 on PATH.
+	set(PX4_PYTHON_EXECUTABLE "" CACHE FILEPATH "Python 3 with PX4's build modules (kconfiglib, empy, genmsg, jinja2, yaml); empty: found")
 	set(PX4_BUILD_DIR "${PX4_DIR}/build/${PX4_CONFIG}")
 	if(PX4_CONFIG MATCHES "^px4_sitl")
 		set(px4_split_any_board ON)
@@ -57,11 +49,10 @@ else()
 
 	add_custom_target(px4_hitl
 		COMMAND ${CMAKE_COMMAND} -DPX4_DIR=${PX4_DIR} -DPATCH=${HITL_PX4_PATCH} -P ${HITL_PX4_APPLY}
-		COMMAND ${CMAKE_COMMAND} -S ${PX4_DIR} -B ${PX4_BUILD_DIR} -G ${px4_generator}
-			-DCONFIG=${PX4_CONFIG}
-			-DEXTERNAL_MODULES_LOCATION=${HITL_PX4_DIR}
-			-DHITL_HIL_SPLIT_ANY_BOARD=${px4_split_any_board}
-			-DPYTHON_EXECUTABLE=${PX4_PYTHON_EXECUTABLE}
+		COMMAND ${CMAKE_COMMAND} -DPX4_DIR=${PX4_DIR} -DPX4_BUILD_DIR=${PX4_BUILD_DIR} -DPX4_CONFIG=${PX4_CONFIG}
+			-DEXTERNAL_MODULES_LOCATION=${HITL_PX4_DIR} -DHIL_SPLIT_ANY_BOARD=${px4_split_any_board}
+			-DPX4_PYTHON_EXECUTABLE=${PX4_PYTHON_EXECUTABLE}
+			-P ${CMAKE_CURRENT_LIST_DIR}/configure_px4.cmake
 		COMMAND ${CMAKE_COMMAND} --build ${PX4_BUILD_DIR} -j ${PX4_BUILD_JOBS}
 		COMMENT "PX4 ${PX4_CONFIG} with dsp_hitl and the MavlinkReceiver patch (${PX4_BUILD_DIR})"
 		USES_TERMINAL
