@@ -1,5 +1,6 @@
 // hitl shell: the PX4 shell from the host (SERIAL_CONTROL, as mavlink_shell.py), one command
-// with -c or line by line from stdin.
+// with -c or line by line from stdin. Exits 1 when a command returned non-zero on the board (PX4's
+// shell says so in its output, shell_status.h), unless --ignore-status.
 #include <unistd.h>
 
 #include <iostream>
@@ -7,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/link_options.h"
 #include "engine/vehicle/shell_client.h"
+#include "engine/vehicle/shell_status.h"
 
 namespace hitl::cli {
 namespace {
@@ -15,6 +17,7 @@ struct ShellOptions {
   vehicle::LinkOptions link;
   std::string command;
   double timeout_s = 5.0;
+  bool ignore_status = false;
 };
 
 int run_shell(const GlobalOptions& g, const ShellOptions& o) {
@@ -25,17 +28,27 @@ int run_shell(const GlobalOptions& g, const ShellOptions& o) {
   }
   log_info(g, "hitl shell: autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
   vehicle::ShellClient shell(**link);
+  bool failed_on_board = false;
   auto one = [&](const std::string& line) {
     auto out = shell.run(line, o.timeout_s);
     if (!out) {
       log_error("shell", out.error().message);
       return false;
     }
-    if (g.json) print_json_line({{"type", "shell"}, {"command", line}, {"output", *out}});
+    const vehicle::ShellStatus status = vehicle::shell_status(*out);
+    if (g.json)
+      print_json_line({{"type", "shell"}, {"command", line}, {"output", *out}, {"status", status.code}, {"ok", status.code == 0}});
     else std::cout << *out << std::flush;
+    if (status.code != 0) {
+      failed_on_board = true;
+      if (!o.ignore_status)
+        log_error("shell", "'" + line + "' returned " + std::to_string(status.code) + " on the board (" + status.line +
+                               "); --ignore-status to exit 0");
+    }
     return true;
   };
-  if (!o.command.empty()) return one(o.command) ? kExitOk : kExitFailed;
+  auto exit_code = [&] { return failed_on_board && !o.ignore_status ? kExitFailed : kExitOk; };
+  if (!o.command.empty()) return one(o.command) ? exit_code() : kExitFailed;
   const bool tty = ::isatty(STDIN_FILENO) == 1;
   std::string line;
   for (;;) {
@@ -45,7 +58,7 @@ int run_shell(const GlobalOptions& g, const ShellOptions& o) {
     if (line.empty()) continue;
     if (!one(line)) return kExitFailed;
   }
-  return kExitOk;
+  return exit_code();  // 1 when any command returned non-zero on the board
 }
 
 }  // namespace
@@ -56,7 +69,10 @@ void add_shell_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   add_link_options(sub, o->link);
   sub->add_option("-c,--command", o->command, "Run one command and print its output, e.g. \"qshell dsp_hitl status\"");
   sub->add_option("--command-timeout", o->timeout_s, "Seconds a command may take")->capture_default_str()->check(CLI::PositiveNumber);
-  sub->footer("Examples:\n  hitl shell -c \"qshell dsp_hitl status\"\n  hitl shell            # interactive; exit with Ctrl-D or 'exit'");
+  sub->add_flag("--ignore-status", o->ignore_status,
+                "Exit 0 even when a command returned non-zero on the board (PX4's \"Command 'NAME' failed, returned N.\")");
+  sub->footer("Exit: 0 ok, 1 a command returned non-zero on the board (or the shell did not answer).\n"
+              "Examples:\n  hitl shell -c \"qshell dsp_hitl status\"\n  hitl shell            # interactive; exit with Ctrl-D or 'exit'");
   sub->callback([&options, &state, o]() { state.exit_code = run_shell(options, *o); });
 }
 

@@ -33,7 +33,7 @@ _hitl_options() {
         'params reset') echo '-h --help --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'arm') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --force --version --json -v --verbose -q --quiet --dialect --config' ;;
         'disarm') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --force --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'shell') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout -c --command --command-timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'shell') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout -c --command --command-timeout --ignore-status --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly takeoff') echo '-h --help --alt --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly land') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;

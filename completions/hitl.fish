@@ -196,6 +196,7 @@ complete -c hitl -n '__hitl_at "shell"' -l sysid -r -f -d 'The autopilot\'s syst
 complete -c hitl -n '__hitl_at "shell"' -l timeout -r -f -d 'Seconds to wait for the autopilot\'s HEARTBEAT'
 complete -c hitl -n '__hitl_at "shell"' -s c -l command -r -f -d 'Run one command and print its output, e.g. "qshell dsp_hitl status"'
 complete -c hitl -n '__hitl_at "shell"' -l command-timeout -r -f -d 'Seconds a command may take'
+complete -c hitl -n '__hitl_at "shell"' -l ignore-status -d 'Exit 0 even when a command returned non-zero on the board'
 complete -c hitl -n '__hitl_at "fly"' -s h -l help -d 'Print this help message and exit'
 complete -c hitl -n '__hitl_at "fly" "fly takeoff" "fly land" "fly hold" "fly trajectory"' -l connect -r -f -d 'auto (a running hitl sim/bridge on 127.0.0.1:14600, else the board\'s GCS instance),...'
 complete -c hitl -n '__hitl_at "fly" "fly takeoff" "fly land" "fly hold" "fly trajectory"' -s i -l target-ip -r -f -d 'The board\'s IP for the direct path'

@@ -16,6 +16,7 @@
 #include "engine/net/udp_endpoint.h"
 #include "engine/vehicle/params_file.h"
 #include "target/core/dsp_hitl.h"
+#include "target/core/dsp_hitl_status.h"
 #include "target/core/hil_gps.h"
 #include "target/core/hil_split.h"
 #include "target/emulator/flight_adapter.h"
@@ -535,7 +536,7 @@ struct Board::Impl {
       });
   }
 
-  std::string shell_command(const std::string& line);
+  ShellResult shell_command(const std::string& line);
 
   /// The apps processor's `voxl-hitl-vio-server --status [--json]` (target/vio-server), which the
   /// emulated board answers in its one shell: its VIO listener is that server.
@@ -591,15 +592,27 @@ struct Board::Impl {
   }
 };
 
-std::string Board::Impl::shell_command(const std::string& line) {
+ShellResult Board::Impl::shell_command(const std::string& line) {
   std::string cmd = line;
   if (cmd.rfind("qshell ", 0) == 0) cmd = cmd.substr(7);  // on the board qshell runs it on the DSP
   if (cmd == "help")
     return "Builtin commands (hitl target, an emulated VOXL2 board, not PX4):\n"
-           "  dsp_hitl status | qshell dsp_hitl status\n  commander status | check | arm | disarm | takeoff | land\n"
+           "  dsp_hitl start | stop | status (also through qshell)\n  commander status | check | arm | disarm | takeoff | land\n"
            "  ekf2 status\n  mavlink status\n  param show [PATTERN] | param set NAME VALUE\n  ver all\n  help\n"
            "  voxl-hitl-vio-server --status [--json]   (the apps processor's VIO server)\n";
-  if (cmd == "dsp_hitl status") return dsp.status_text();
+  // dsp_hitl as target/px4's module: status of a stopped module prints "Running: no" with zero
+  // counters and returns 1; stop of a stopped module does nothing (ModuleBase).
+  if (cmd == "dsp_hitl status")
+    return dsp.running() ? ShellResult{dsp.status_text()} : ShellResult{dsp_hitl_status_text(false, {}, {}), 1};
+  if (cmd == "dsp_hitl stop") {
+    if (dsp.running()) dsp.stop();
+    return {};
+  }
+  if (cmd == "dsp_hitl start") {
+    if (dsp.running()) return {"dsp_hitl: already running\n", 1};
+    dsp.start();
+    return {};
+  }
   if (cmd == "commander status") return flight->commander_status();
   if (cmd == "commander check") return flight->commander_check();
   if (cmd.rfind("voxl-hitl-vio-server --status", 0) == 0) return vio_server_status(cmd.find("--json") != std::string::npos);

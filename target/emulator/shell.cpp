@@ -30,7 +30,11 @@ std::vector<mavlink::msg::SerialControl> Shell::on_serial_control(const mavlink:
       const auto first = line_.find_first_not_of(' ');
       if (first != std::string::npos) {
         ++commands_run_;
-        output += executor_(line_.substr(first));
+        const std::string command = line_.substr(first);
+        const ShellResult result = executor_(command);
+        output += result.output;
+        if (result.status != 0)
+          output += "Command '" + command.substr(0, command.find(' ')) + "' failed, returned " + std::to_string(result.status) + ".\n";
       }
       output += kShellPrompt;
       line_.clear();

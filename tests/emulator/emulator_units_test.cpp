@@ -42,6 +42,13 @@ TEST(Shell, EchoesRunsTheLineAndReturnsThePrompt) {
   EXPECT_TRUE(shell.on_serial_control(other).empty());
 }
 
+TEST(Shell, ANonZeroReturnIsFollowedByPxhsFailureLine) {
+  Shell shell([](const std::string& line) { return line.rfind("fail", 0) == 0 ? ShellResult{"Running: no\n", 1} : ShellResult{"ok\n"}; });
+  EXPECT_EQ(text_of(shell.on_serial_control(input("fail now\n"))),
+            "fail now\nRunning: no\nCommand 'fail' failed, returned 1.\n" + std::string(kShellPrompt));
+  EXPECT_EQ(text_of(shell.on_serial_control(input("fine\n"))), "fine\nok\n" + std::string(kShellPrompt));
+}
+
 TEST(ParamStore, TypedSetsWithRanges) {
   ParamStore store;
   store.add("SYS_HITL", vehicle::ParamValue::int32(1), 0, 2);

@@ -71,6 +71,60 @@ TEST(OperateE2E, ArmDeniedWithTheReasonThenArmedAndDisarmedShellAnswers) {
   board.wait(10s);
 }
 
+// hitl shell -c exits with what the board's command returned: PX4's shell prints
+// "Command 'NAME' failed, returned N." for a non-zero return (hitl target as PX4's pxh does).
+TEST(OperateE2E, ShellExitStatusFollowsTheBoardsCommand) {
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), local = test::free_udp_port(),
+                 clients = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  auto shell = [&](std::vector<std::string> args) {
+    std::vector<std::string> a{"shell"};
+    a.insert(a.end(), args.begin(), args.end());
+    a.insert(a.end(), {"-i", "127.0.0.1", "--port", std::to_string(gcs), "--local-port", std::to_string(local),
+                       "--session-port", std::to_string(clients)});
+    return test::run_hitl(a);
+  };
+  auto running = shell({"-c", "dsp_hitl status"});
+  EXPECT_EQ(running.exit_code, 0) << running.out << running.err;
+  EXPECT_NE(running.out.find("Running: yes"), std::string::npos) << running.out;
+
+  auto stop = shell({"-c", "dsp_hitl stop"});
+  EXPECT_EQ(stop.exit_code, 0) << stop.out << stop.err;
+  // Stopped: status prints "Running: no" and returns 1, as target/px4's module does on PX4.
+  auto stopped = shell({"-c", "dsp_hitl status"});
+  EXPECT_EQ(stopped.exit_code, 1) << stopped.out << stopped.err;
+  EXPECT_NE(stopped.out.find("Running: no"), std::string::npos) << stopped.out;
+  EXPECT_NE(stopped.out.find("Command 'dsp_hitl' failed, returned 1."), std::string::npos) << stopped.out;
+  EXPECT_NE(stopped.err.find("'dsp_hitl status' returned 1 on the board"), std::string::npos) << stopped.err;
+  // Through qshell the failure is qshell's (it passes the DSP command's return on).
+  auto qshell = shell({"-c", "qshell dsp_hitl status"});
+  EXPECT_EQ(qshell.exit_code, 1) << qshell.out << qshell.err;
+  EXPECT_NE(qshell.out.find("Command 'qshell' failed, returned 1."), std::string::npos) << qshell.out;
+  // --json: the status with the output.
+  auto json = shell({"--json", "-c", "dsp_hitl status"});
+  EXPECT_EQ(json.exit_code, 1) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["status"], 1);
+  EXPECT_FALSE(j["ok"].get<bool>());
+  // --ignore-status: the old behaviour, exit 0 whatever the command returned.
+  auto ignored = shell({"--ignore-status", "-c", "dsp_hitl status"});
+  EXPECT_EQ(ignored.exit_code, 0) << ignored.err;
+  EXPECT_NE(ignored.out.find("Running: no"), std::string::npos) << ignored.out;
+  // A command the board does not have.
+  auto unknown = shell({"-c", "no_such_command"});
+  EXPECT_EQ(unknown.exit_code, 1) << unknown.out << unknown.err;
+
+  auto start = shell({"-c", "dsp_hitl start"});
+  EXPECT_EQ(start.exit_code, 0) << start.out << start.err;
+  auto again = shell({"-c", "dsp_hitl status"});
+  EXPECT_EQ(again.exit_code, 0) << again.out << again.err;
+  EXPECT_NE(again.out.find("Running: yes"), std::string::npos) << again.out;
+  board.signal(SIGINT);
+  board.wait(10s);
+}
+
 TEST(OperateE2E, FlyTrajectoryFromTheHostThroughTheSession) {
   const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port();
   test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
