@@ -3,6 +3,7 @@
 #include <fnmatch.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -11,7 +12,9 @@
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "engine/vehicle/firmware_version.h"
 #include "engine/vehicle/param_client.h"
+#include "engine/vehicle/param_notes.h"
 #include "engine/vehicle/params_check.h"
 #include "engine/vehicle/params_file.h"
 
@@ -25,6 +28,7 @@ struct ParamsOptions {
   std::string value;
   std::string file;
   bool dry_run = false;
+  bool strict = false;  ///< check/diff/reset: a parameter this firmware lacks fails too
 };
 
 nlohmann::json to_json(const vehicle::ParamValue& v) {
@@ -72,17 +76,39 @@ std::optional<std::vector<vehicle::Param>> download(const GlobalOptions& g, Sess
   return std::move(all.value());
 }
 
+/// "this firmware (v1.16.0)" or "this firmware" when AUTOPILOT_VERSION does not come.
+std::string this_firmware(const std::optional<std::string>& version) {
+  return version ? "this firmware (" + *version + ")" : std::string("this firmware");
+}
+
+nlohmann::json version_json(const std::optional<std::string>& version) {
+  return version ? nlohmann::json(*version) : nlohmann::json(nullptr);
+}
+
 /// Pushes `wanted` onto the board: set what differs, verify by read-back, report.
-int push(const GlobalOptions& g, Session& s, const std::vector<vehicle::Param>& wanted, bool dry_run, const char* what) {
+/// `absent_ok` (reset of the HITL set): a parameter the board does not have is reported as absent,
+/// a failure only with --strict; otherwise (load) it fails.
+int push(const GlobalOptions& g, const ParamsOptions& o, Session& s, const std::vector<vehicle::Param>& wanted, bool absent_ok,
+         const char* what) {
+  const bool dry_run = o.dry_run;
   auto board = download(g, s);
   if (!board) return kExitFailed;
   std::map<std::string, vehicle::ParamValue> current;
   for (const auto& p : *board) current[p.name] = p.value;
-  nlohmann::json set = nlohmann::json::array(), unchanged = nlohmann::json::array(), failed = nlohmann::json::array();
+  std::optional<std::string> firmware;
+  nlohmann::json set = nlohmann::json::array(), unchanged = nlohmann::json::array(), failed = nlohmann::json::array(),
+                 absent = nlohmann::json::array();
   for (const auto& p : wanted) {
     auto it = current.find(p.name);
     if (it == current.end()) {
-      failed.push_back({{"name", p.name}, {"error", "the board has no such parameter"}});
+      if (!absent_ok) {
+        failed.push_back({{"name", p.name}, {"error", "the board has no such parameter"}});
+        continue;
+      }
+      if (absent.empty()) firmware = vehicle::request_firmware_version(*s.link);
+      const vehicle::AbsentParamNote* note = vehicle::find_absent_note(p.name);
+      absent.push_back({{"name", p.name},
+                        {"note", note ? nlohmann::json("not in " + note->firmware + ": " + note->replacement) : nlohmann::json(nullptr)}});
       continue;
     }
     if (it->second == p.value) {
@@ -98,17 +124,30 @@ int push(const GlobalOptions& g, Session& s, const std::vector<vehicle::Param>& 
     if (r && back && *back == p.value) set.push_back(change(p.name, it->second, p.value));
     else failed.push_back({{"name", p.name}, {"error", !r ? r.error().message : (!back ? back.error().message : "read back " + back->to_string())}});
   }
+  const bool ok = failed.empty() && (absent.empty() || !o.strict);
   if (g.json) {
-    print_json_line({{"type", what}, {"dry_run", dry_run}, {"set", set}, {"unchanged", unchanged}, {"failed", failed},
-                     {"ok", failed.empty()}});
+    nlohmann::json out = {{"type", what}, {"dry_run", dry_run}, {"set", set}, {"unchanged", unchanged}, {"failed", failed}, {"ok", ok}};
+    if (absent_ok) {
+      out["absent"] = absent;
+      out["firmware"] = version_json(firmware);
+      out["strict"] = o.strict;
+    }
+    print_json_line(out);
   } else {
     for (const auto& e : set)
       std::cout << (dry_run ? "would set " : "set ") << e["name"].get<std::string>() << ": " << e["from_text"].get<std::string>()
                 << " -> " << e["to_text"].get<std::string>() << '\n';
     for (const auto& e : failed) std::cout << "FAILED " << e["name"].get<std::string>() << ": " << e["error"].get<std::string>() << '\n';
-    std::cout << set.size() << (dry_run ? " to set, " : " set, ") << unchanged.size() << " unchanged, " << failed.size() << " failed\n";
+    for (const auto& e : absent) {
+      std::cout << "ABSENT " << e["name"].get<std::string>() << ": " << this_firmware(firmware) << " has no such parameter";
+      if (!e["note"].is_null()) std::cout << "  -> " << e["note"].get<std::string>();
+      std::cout << '\n';
+    }
+    std::cout << set.size() << (dry_run ? " to set, " : " set, ") << unchanged.size() << " unchanged, " << failed.size() << " failed";
+    if (absent_ok) std::cout << ", " << absent.size() << " absent" << (absent.empty() || o.strict ? "" : " (not a failure; --strict to count them)");
+    std::cout << '\n';
   }
-  return failed.empty() ? kExitOk : kExitFailed;
+  return ok ? kExitOk : kExitFailed;
 }
 
 int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& action) {
@@ -181,33 +220,46 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
   if (action == "diff" || action == "check") {
     auto all = download(g, *s);
     if (!all) return kExitFailed;
+    const auto checked = vehicle::check_params(*all, vehicle::hitl_default_params());
+    std::optional<std::string> firmware;
+    nlohmann::json absent = nlohmann::json::array();
+    for (const auto& c : checked)
+      if (c.absent) absent.push_back(c.name);
+    if (!absent.empty()) firmware = vehicle::request_firmware_version(*s->link);
     nlohmann::json rows = nlohmann::json::array();
-    for (const auto& c : vehicle::check_params(*all, vehicle::hitl_default_params())) {
+    bool all_ok = true;
+    for (const auto& c : checked) {
+      all_ok = all_ok && !vehicle::row_fails(c, o.strict);
       if (action == "diff" && c.ok) continue;
       nlohmann::json row = {{"name", c.name}, {"expected", to_json(c.expected)},
                             {"board", c.board ? to_json(*c.board) : nlohmann::json(nullptr)}, {"ok", c.ok},
-                            {"board_text", c.board ? c.board->to_string() : std::string("missing")},
-                            {"expected_text", c.expected.to_string()}};
+                            {"absent", c.absent}, {"note", c.note.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.note)}};
       if (!c.ok) row["fix"] = c.fix;
       rows.push_back(row);
     }
-    bool all_ok = true;
-    for (const auto& r : rows) all_ok = all_ok && r["ok"].get<bool>();
     if (g.json) {
-      for (auto& r : rows) {
-      r.erase("board_text");
-      r.erase("expected_text");
-    }
-    print_json_line({{"type", action}, {action == "diff" ? "differences" : "checks", rows}, {"ok", all_ok}});
+      print_json_line({{"type", action}, {action == "diff" ? "differences" : "checks", rows}, {"ok", all_ok},
+                       {"absent", absent}, {"firmware", version_json(firmware)}, {"strict", o.strict}});
     } else {
-      for (const auto& r : rows) {
-        if (action == "check") std::cout << (r["ok"].get<bool>() ? "PASS " : "FAIL ");
-        std::cout << r["name"].get<std::string>() << ": board " << r["board_text"].get<std::string>() << ", HITL default "
-                  << r["expected_text"].get<std::string>();
-        if (r.contains("fix")) std::cout << "  -> " << r["fix"].get<std::string>();
+      for (const auto& c : checked) {
+        if (action == "diff" && c.ok) continue;
+        if (c.absent) {
+          std::cout << "ABSENT " << c.name << ": " << this_firmware(firmware) << " has no such parameter, HITL default "
+                    << c.expected.to_string();
+          if (!c.note.empty()) std::cout << "  -> " << c.note;
+          std::cout << '\n';
+          continue;
+        }
+        if (action == "check") std::cout << (c.ok ? "PASS " : "FAIL ");
+        std::cout << c.name << ": board " << c.board->to_string() << ", HITL default " << c.expected.to_string();
+        if (!c.ok) std::cout << "  -> " << c.fix;
         std::cout << '\n';
       }
-      if (action == "diff" && rows.empty()) std::cout << "no differences from the HITL defaults\n";
+      const std::size_t wrong = std::count_if(checked.begin(), checked.end(), [](const auto& c) { return !c.ok && !c.absent; });
+      if (action == "diff" && wrong == 0) std::cout << "no differences from the HITL defaults\n";
+      if (!absent.empty())
+        std::cout << absent.size() << " absent on " << this_firmware(firmware)
+                  << (o.strict ? " (--strict: counted as failures)\n" : " (not a failure; --strict to count them)\n");
     }
     return all_ok ? kExitOk : kExitFailed;
   }
@@ -217,9 +269,9 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
       log_error("params", file.error().message);
       return kExitUsage;
     }
-    return push(g, *s, *file, o.dry_run, "load");
+    return push(g, o, *s, *file, false, "load");
   }
-  return push(g, *s, vehicle::hitl_default_params(), o.dry_run, "reset");
+  return push(g, o, *s, vehicle::hitl_default_params(), true, "reset");
 }
 
 }  // namespace
@@ -228,7 +280,8 @@ void add_params_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   auto o = std::make_shared<ParamsOptions>();
   auto* sub = app.add_subcommand("params", "PX4 parameters: show, get, set, diff/check against the HITL set, export, load, reset");
   sub->require_subcommand(1);
-  sub->footer("Exit: 0 ok, 1 a check failed or the board did not take a value, 2 bad usage or file.");
+  sub->footer("Exit: 0 ok, 1 a check failed or the board did not take a value (a parameter this firmware lacks: only\n"
+              "with --strict), 2 bad usage or file.");
   add_link_options(sub, o->link);
   auto add = [&](const char* name, const char* help) {
     auto* c = sub->add_subcommand(name, help);
@@ -240,15 +293,18 @@ void add_params_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   auto* set = add("set", "Set one parameter and check the board's echo");
   set->add_option("NAME", o->name)->required();
   set->add_option("VALUE", o->value)->required();
-  add("diff", "Parameters that differ from the spec's HITL default set (exit 1 when any)");
+  const char* strict_help = "Count a parameter of the HITL set that this firmware lacks as a failure (default: reported as absent)";
+  add("diff", "Parameters that differ from the spec's HITL default set (exit 1 when any)")->add_flag("--strict", o->strict, strict_help);
   add("check", "The spec's HITL settings (SYS_HITL, CAL_*_ID vs the dsp_hitl device IDs, EKF2, arming, CA_*): "
-               "pass/fail with the command that fixes each");
+               "pass/fail with the command that fixes each; parameters this firmware lacks as absent")
+      ->add_flag("--strict", o->strict, strict_help);
   add("export", "Save every parameter to a QGroundControl .params file")->add_option("FILE", o->file)->required();
   auto* load = add("load", "Set the parameters of a .params file, verified by read-back");
   load->add_option("FILE", o->file)->required()->check(CLI::ExistingFile);
   load->add_flag("--dry-run", o->dry_run, "Show what would change");
-  add("reset", "Push the spec's HITL default set, verified by read-back (no rm on the board needed)")
-      ->add_flag("--dry-run", o->dry_run, "Show what would change");
+  auto* reset = add("reset", "Push the spec's HITL default set, verified by read-back (no rm on the board needed)");
+  reset->add_flag("--dry-run", o->dry_run, "Show what would change");
+  reset->add_flag("--strict", o->strict, strict_help);
 }
 
 }  // namespace hitl::cli

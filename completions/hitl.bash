@@ -26,11 +26,11 @@ _hitl_options() {
         'params show') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params get') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params set') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'params diff') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'params check') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'params diff') echo '-h --help --strict --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'params check') echo '-h --help --strict --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params export') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params load') echo '-h --help --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'params reset') echo '-h --help --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'params reset') echo '-h --help --dry-run --strict --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'arm') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --force --version --json -v --verbose -q --quiet --dialect --config' ;;
         'disarm') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --force --version --json -v --verbose -q --quiet --dialect --config' ;;
         'shell') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout -c --command --command-timeout --ignore-status --version --json -v --verbose -q --quiet --dialect --config' ;;

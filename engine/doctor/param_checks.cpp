@@ -1,5 +1,7 @@
 #include "engine/doctor/param_checks.h"
 
+#include <algorithm>
+
 #include "engine/doctor/check_catalog.h"
 #include "target/core/device_ids.h"
 
@@ -40,14 +42,18 @@ std::vector<CheckResult> param_checks(const Expected<std::vector<vehicle::Param>
   for (const auto& g : kGroups) {
     std::size_t total = 0;
     std::vector<const vehicle::ParamCheckRow*> wrong;
+    std::string absent;  // parameters this firmware does not have: not wrong (hitl params check --strict)
     for (const auto& r : rows) {
       if (r.group != g.group) continue;
       ++total;
-      if (!r.ok) wrong.push_back(&r);
+      if (vehicle::row_fails(r, false)) wrong.push_back(&r);
+      else if (r.absent) absent += (absent.empty() ? "" : ", ") + r.name;
     }
     if (wrong.empty()) {
-      out.push_back(make_result(g.id, Verdict::Pass, std::to_string(total) + " of " + std::to_string(total) + " " +
-                                                         vehicle::to_string(g.group) + " parameters as the spec's HITL set"));
+      const std::size_t present = total - (absent.empty() ? 0 : static_cast<std::size_t>(std::count(absent.begin(), absent.end(), ',') + 1));
+      out.push_back(make_result(g.id, Verdict::Pass, std::to_string(present) + " of " + std::to_string(total) + " " +
+                                                         vehicle::to_string(g.group) + " parameters as the spec's HITL set" +
+                                                         (absent.empty() ? "" : "; not on this firmware: " + absent)));
       continue;
     }
     std::string saw;

@@ -2,6 +2,8 @@
 
 #include <map>
 
+#include "engine/vehicle/param_notes.h"
+
 namespace hitl::vehicle {
 
 const char* to_string(ParamGroup group) {
@@ -36,12 +38,18 @@ std::vector<ParamCheckRow> check_params(const std::vector<Param>& board, const s
     row.expected = p.value;
     if (auto it = on_board.find(p.name); it != on_board.end()) row.board = it->second;
     row.ok = row.board && *row.board == p.value;
-    if (!row.ok)
-      row.fix = !row.board ? "this PX4 build lacks " + p.name
-                           : "hitl params set " + p.name + " " + p.value.to_string() + "  (or: hitl params reset)";
+    row.absent = !row.board;
+    if (row.absent) {
+      if (const AbsentParamNote* note = find_absent_note(p.name)) row.note = "not in " + note->firmware + ": " + note->replacement;
+      row.fix = "this firmware lacks " + p.name + " (a failure only with --strict)";
+    } else if (!row.ok) {
+      row.fix = "hitl params set " + p.name + " " + p.value.to_string() + "  (or: hitl params reset)";
+    }
     rows.push_back(std::move(row));
   }
   return rows;
 }
+
+bool row_fails(const ParamCheckRow& row, bool strict) { return !row.ok && (!row.absent || strict); }
 
 }  // namespace hitl::vehicle

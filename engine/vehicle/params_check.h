@@ -25,11 +25,16 @@ struct ParamCheckRow {
   ParamGroup group = ParamGroup::System;
   ParamValue expected;
   std::optional<ParamValue> board;  ///< none: the board has no such parameter
-  bool ok = false;
+  bool ok = false;                  ///< the board has it, with the expected value
+  bool absent = false;              ///< the board has no such parameter (not a wrong value)
+  std::string note;                 ///< absent: which firmware lacks it and what replaces it (param_notes.h), if known
   std::string fix;                  ///< empty when ok
 };
 
 /// Every parameter of `expected` against `board` (a full download).
 std::vector<ParamCheckRow> check_params(const std::vector<Param>& board, const std::vector<Param>& expected);
+
+/// Whether a row fails the check: a wrong value always; an absent parameter only when `strict`.
+bool row_fails(const ParamCheckRow& row, bool strict);
 
 }  // namespace hitl::vehicle

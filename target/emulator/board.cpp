@@ -14,6 +14,7 @@
 #include "engine/mavlink/frame_parser.h"
 #include "engine/mavlink/messages.h"
 #include "engine/net/udp_endpoint.h"
+#include "engine/vehicle/param_notes.h"
 #include "engine/vehicle/params_file.h"
 #include "target/core/dsp_hitl.h"
 #include "target/core/dsp_hitl_status.h"
@@ -28,6 +29,8 @@ namespace hitl::target {
 namespace {
 
 namespace msg = mavlink::msg;
+// The firmware whose parameter set the board follows (the "#absent" notes name firmwares this way).
+constexpr const char* kEmulatedFirmware = "PX4 v1.16";
 using mavlink::MavResult;
 
 constexpr int64_t hz(double rate) { return static_cast<int64_t>(1e6 / rate); }
@@ -674,8 +677,11 @@ Expected<std::unique_ptr<Board>> Board::create(const BoardConfig& config) {
   impl->config = config;
   impl->vio_rate_since_s = monotonic_s();
   // The flight core's own parameters first, then the spec's HITL set: its values win where both name one.
+  // The board follows PX4 v1.16: a parameter of the set that v1.16 does not have (hitl-defaults.params'
+  // "#absent NAME | PX4 v1.16 | ..." lines) is not added, so `hitl params check` sees it absent.
   impl->flight = std::make_unique<FlightAdapter>(impl->params);
   for (const auto& p : vehicle::hitl_default_params()) {
+    if (const auto* note = vehicle::find_absent_note(p.name); note != nullptr && note->firmware == kEmulatedFirmware) continue;
     if (impl->params.get(p.name) == nullptr) impl->params.add(p.name, p.value);
     else if (auto set = impl->params.set(p.name, p.value); !set) return Error{"HITL default " + p.name + ": " + set.error().message};
   }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/vehicle/param_notes.h"
 #include "engine/vehicle/params_file.h"
 #include "tests/support/process.h"
 
@@ -19,6 +20,7 @@ const std::string kParamsFile = std::string(HITL_SOURCE_DIR) + "/target/px4/hitl
 struct ConfigLine {
   std::string name;
   std::string value;
+  bool if_present = false;  ///< `param set-if-present`: a parameter some firmware lacks
 };
 
 std::vector<ConfigLine> read_config(const std::string& path, std::vector<std::string>& problems) {
@@ -28,11 +30,12 @@ std::vector<ConfigLine> read_config(const std::string& path, std::vector<std::st
     if (line.empty() || line[0] == '#') continue;
     std::istringstream words(line);
     std::string param, set, name, value, extra;
-    if (!(words >> param >> set >> name >> value) || param != "param" || set != "set" || (words >> extra)) {
-      problems.push_back("not 'param set NAME VALUE': " + line);
+    if (!(words >> param >> set >> name >> value) || param != "param" || (set != "set" && set != "set-if-present") ||
+        (words >> extra)) {
+      problems.push_back("not 'param set[-if-present] NAME VALUE': " + line);
       continue;
     }
-    out.push_back({name, value});
+    out.push_back({name, value, set == "set-if-present"});
   }
   return out;
 }
@@ -48,6 +51,8 @@ TEST(DefaultParametersConfig, EveryValueEqualsTheParamsFile) {
     const vehicle::Param& p = params.value()[i];
     SCOPED_TRACE(p.name);
     EXPECT_EQ(config[i].name, p.name);
+    // set-if-present exactly for the parameters hitl-defaults.params notes as absent somewhere.
+    EXPECT_EQ(config[i].if_present, vehicle::find_absent_note(p.name) != nullptr);
     // The value as PX4's `param set` reads it, typed as the .params file says.
     std::ostringstream line;
     line << "1\t1\t" << config[i].name << "\t" << config[i].value << "\t" << static_cast<int>(p.value.type) << "\n";

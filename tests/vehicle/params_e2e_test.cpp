@@ -51,7 +51,10 @@ TEST_F(ParamsE2E, ResetRepairsAPerturbedBoardAndDiffIsEmptyAfterwards) {
   EXPECT_NE(check.out.find("PASS EKF2_GPS_CTRL"), std::string::npos);
   auto diff = params({"diff"}, true);
   EXPECT_EQ(diff.exit_code, 1);
-  EXPECT_EQ(nlohmann::json::parse(diff.out)["differences"].size(), 2u);
+  std::size_t wrong = 0;  // and the two this firmware lacks, listed with absent: true
+  const auto differences = nlohmann::json::parse(diff.out)["differences"];
+  for (const auto& row : differences) wrong += row["absent"].get<bool>() ? 0 : 1;
+  EXPECT_EQ(wrong, 2u);
   auto dry = params({"reset", "--dry-run"});
   EXPECT_EQ(dry.exit_code, 0);
   EXPECT_NE(dry.out.find("would set CAL_ACC0_ID: 5 -> 1310988"), std::string::npos) << dry.out;
@@ -65,6 +68,56 @@ TEST_F(ParamsE2E, ResetRepairsAPerturbedBoardAndDiffIsEmptyAfterwards) {
   EXPECT_EQ(after.exit_code, 0);
   EXPECT_NE(after.out.find("no differences"), std::string::npos);
   EXPECT_EQ(params({"check"}).exit_code, 0);
+}
+
+// PX4 v1.16 has no COM_ARM_EKF_POS or COM_ARM_EKF_VEL, and hitl target follows it: check, diff
+// and reset report them as absent, with the firmware's version (AUTOPILOT_VERSION) and what
+// replaces them, and pass unless --strict. A wrong value still fails.
+TEST_F(ParamsE2E, ParametersThisFirmwareLacksAreAbsentNotWrong) {
+  auto check = params({"check"});
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+  EXPECT_NE(check.out.find("ABSENT COM_ARM_EKF_POS: this firmware (v1.16.0"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("ABSENT COM_ARM_EKF_VEL"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("PR #23411"), std::string::npos) << check.out;
+  EXPECT_EQ(check.out.find("FAIL "), std::string::npos) << check.out;
+  EXPECT_EQ(params({"check", "--strict"}).exit_code, 1);
+
+  auto json = params({"check"}, true);
+  EXPECT_EQ(json.exit_code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  EXPECT_TRUE(j["ok"].get<bool>());
+  EXPECT_EQ(j["firmware"].get<std::string>().rfind("v1.16.0", 0), 0u) << json.out;
+  ASSERT_EQ(j["absent"].size(), 2u) << json.out;
+  EXPECT_EQ(j["absent"][0], "COM_ARM_EKF_POS");
+  bool found = false;
+  for (const auto& row : j["checks"]) {
+    if (row["name"] != "COM_ARM_EKF_VEL") continue;
+    found = true;
+    EXPECT_TRUE(row["absent"].get<bool>());
+    EXPECT_FALSE(row["ok"].get<bool>());
+    EXPECT_TRUE(row["board"].is_null());
+    EXPECT_NE(row["note"].get<std::string>().find("EKF2_GPS_V_GATE"), std::string::npos) << row;
+  }
+  EXPECT_TRUE(found);
+
+  auto diff = params({"diff"});
+  EXPECT_EQ(diff.exit_code, 0) << diff.out;
+  EXPECT_NE(diff.out.find("no differences"), std::string::npos) << diff.out;
+  EXPECT_EQ(params({"diff", "--strict"}).exit_code, 1);
+
+  auto reset = params({"reset"}, true);
+  EXPECT_EQ(reset.exit_code, 0) << reset.out << reset.err;
+  const auto r = nlohmann::json::parse(reset.out);
+  EXPECT_TRUE(r["failed"].empty()) << reset.out;
+  ASSERT_EQ(r["absent"].size(), 2u) << reset.out;
+  EXPECT_EQ(r["absent"][1]["name"], "COM_ARM_EKF_VEL");
+  EXPECT_EQ(params({"reset", "--strict"}).exit_code, 1);
+  auto text = params({"reset"});
+  EXPECT_NE(text.out.find("ABSENT COM_ARM_EKF_POS"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find(", 2 absent"), std::string::npos) << text.out;
+
+  EXPECT_EQ(params({"set", "SYS_HITL", "0"}).exit_code, 0);
+  EXPECT_EQ(params({"check"}).exit_code, 1);
 }
 
 TEST_F(ParamsE2E, ExportLoadRoundTripGetAndBadValues) {

@@ -14,6 +14,7 @@ constexpr double kGpsPosResetAfter_s = 5.0;   // continuous rejection -> reset t
 constexpr int kBaroRefSamples = 10;           // 1 s at 10 Hz
 constexpr double kAccelClip_m_s2 = 150.0;     // ~16 g full scale
 constexpr double kMotionAccelBaseline_s = 0.5;
+constexpr double kPreflightTestRatioMax = 0.5;  // PX4 v1.16 EKF2: kMinTestRatioPreflight
 
 double seconds(std::uint64_t later_us, std::uint64_t earlier_us) {
   return later_us >= earlier_us ? static_cast<double>(later_us - earlier_us) * 1e-6 : 0.0;
@@ -239,10 +240,12 @@ Readiness Estimator::preflight_check() const {
   if (last_gps_.eph_m > params_.EKF2_REQ_EPH) return fail("GPS Horizontal Pos Error too high");
   const EstimatorStatus s = status();
   if ((s.flags & estimator_flags::kPosHorizAbs) == 0) return fail("ekf2 GPS checks pending");
-  if (s.pos_horiz_ratio > params_.COM_ARM_EKF_POS) return fail("Position estimate error");
-  if (s.vel_ratio > params_.COM_ARM_EKF_VEL) return fail("Velocity estimate error");
-  if (s.pos_vert_ratio > params_.COM_ARM_EKF_HGT) return fail("Height estimate error");
-  if (s.mag_ratio > params_.COM_ARM_EKF_YAW) return fail("Yaw estimate error");
+  // PX4 v1.16: EKF2 flags a preflight innovation failure above a fixed test ratio (PR #23411
+  // removed the COM_ARM_EKF_* limits); commander refuses to arm on those flags.
+  if (s.pos_horiz_ratio > kPreflightTestRatioMax) return fail("Position estimate error");
+  if (s.vel_ratio > kPreflightTestRatioMax) return fail("Velocity estimate error");
+  if (s.pos_vert_ratio > kPreflightTestRatioMax) return fail("Height estimate error");
+  if (s.mag_ratio > kPreflightTestRatioMax) return fail("Yaw estimate error");
   if ((s.flags & estimator_flags::kAccelError) != 0) return fail("Accel clipping");
   return {true, ""};
 }

@@ -78,10 +78,8 @@ struct FlightParams {
   float COM_RC_LOSS_T = 0.5f;       ///< s without sticks -> sticks centred
   std::int32_t COM_RC_OVERRIDE = 1; ///< bit 0: sticks take over from auto modes (hold)
   float COM_RC_STICK_OV = 30.0f;    ///< % stick deflection for that take-over
-  float COM_ARM_EKF_POS = 0.5f;     ///< max position test ratio to arm
-  float COM_ARM_EKF_VEL = 0.5f;
-  float COM_ARM_EKF_HGT = 1.0f;
-  float COM_ARM_EKF_YAW = 0.5f;
+  // No COM_ARM_EKF_POS/VEL/HGT/YAW: PX4 v1.16 removed them (PR #23411); the estimator's preflight
+  // check uses EKF2's fixed test-ratio limit instead (estimator.cpp, kPreflightTestRatioMax).
   float LNDMC_Z_VEL_MAX = 0.5f;     ///< m/s
   float LNDMC_XY_VEL_MAX = 1.5f;    ///< m/s
   float LNDMC_TRIG_TIME = 1.0f;     ///< s, maybe-landed -> landed
