@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "cli/number_check.h"
 #include "engine/vehicle/shell_client.h"
 
 namespace hitl::cli {
@@ -55,7 +56,7 @@ void add_shell_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   auto* sub = app.add_subcommand("shell", "The PX4 shell on the board over MAVLink (one command with -c, or lines from stdin)");
   add_link_options(sub, o->link);
   sub->add_option("-c,--command", o->command, "Run one command and print its output, e.g. \"qshell dsp_hitl status\"");
-  sub->add_option("--command-timeout", o->timeout_s, "Seconds a command may take")->capture_default_str()->check(CLI::PositiveNumber);
+  sub->add_option("--command-timeout", o->timeout_s, "Seconds a command may take")->capture_default_str()->check(positive_number());
   sub->footer("Examples:\n  hitl shell -c \"qshell dsp_hitl status\"\n  hitl shell            # interactive; exit with Ctrl-D or 'exit'");
   sub->callback([&options, &state, o]() { state.exit_code = run_shell(options, *o); });
 }
