@@ -268,7 +268,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   bool ok = true;
   for (const auto& r : results) ok = ok && r.ok;
   if ((*inspector)->record_failed()) {
-    log_error(cmd, "--record: writing '" + opt.record + "' failed (disk full?); the recording is incomplete");
+    log_error(cmd, "--record: " + (*inspector)->record_error() + "; the recording is incomplete");
     ok = false;
   }
 
