@@ -33,7 +33,8 @@ nlohmann::json to_json(const bridge::BridgeHealth& h) {
   nlohmann::json j = {{"type", "link"}, {"uptime_s", h.uptime_s}, {"board", h.board_state},
                       {"heartbeat_age_s", h.heartbeat_age_s ? nlohmann::json(*h.heartbeat_age_s) : nlohmann::json(nullptr)},
                       {"rtt_ms", h.rtt_ms ? nlohmann::json(*h.rtt_ms) : nlohmann::json(nullptr)},
-                      {"clients", h.clients}, {"duplicates", h.duplicates}};
+                      {"clients", h.clients}, {"duplicates", h.duplicates},
+                      {"ignored_other_address", h.ignored_other_address}, {"untracked_frames", h.untracked_frames}};
   nlohmann::json loss = nlohmann::json::object();
   for (const auto& [source, l] : h.loss) loss[source] = {{"received", l.received}, {"lost", l.lost}, {"loss_pct", l.loss_pct}};
   j["loss"] = loss;
@@ -73,6 +74,7 @@ std::string to_line(const bridge::BridgeHealth& h) {
     line += "  " + l.name + (l.connected ? " " : " (down) ") + std::to_string(l.packets_in) + "/" + std::to_string(l.packets_out) + " pkt";
   }
   if (h.duplicates) line += "  duplicates dropped " + std::to_string(h.duplicates);
+  if (h.ignored_other_address) line += "  ignored (not the board) " + std::to_string(h.ignored_other_address);
   return line;
 }
 

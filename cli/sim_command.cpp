@@ -75,6 +75,9 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
   j["crc_errors"] = s.crc_errors;
   j["parse_errors"] = s.parse_errors;
   j["clients"] = s.clients;
+  if (!s.record_error.empty()) j["record_error"] = s.record_error;
+  j["clients_refused"] = s.clients_refused;
+  j["client_frames_dropped"] = s.client_frames_dropped;
   j["routed"] = {{"to_board", s.routed_to_board}, {"to_clients", s.routed_to_clients}};
   if (!s.trajectory_state.empty())
     j["trajectory"] = {{"state", s.trajectory_state},
@@ -315,7 +318,9 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     print_summary(snap, end_name(*end));
     if (tunnel) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
   }
-  const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed;
+  if (!snap.record_error.empty()) log_error(cmd, "--record: " + snap.record_error + "; the recording is incomplete");
+  const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed ||
+                      !snap.record_error.empty();
   return failed ? kExitFailed : kExitOk;
 }
 
