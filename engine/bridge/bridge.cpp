@@ -27,7 +27,7 @@ constexpr double kReconnectPeriod_s = 2.0;
 constexpr int kTcpConnectTimeout_ms = 500;
 constexpr std::size_t kTimesyncRemembered = 8;
 constexpr std::size_t kMaxClientDatagramsPerDrain = 64;
-constexpr std::size_t kMaxBoardDatagramsPerDrain = 256;
+constexpr std::size_t kMaxDatagramsPerDrain = 256;
 
 std::string source_key(uint8_t sysid, uint8_t compid) { return std::to_string(sysid) + "/" + std::to_string(compid); }
 
@@ -149,7 +149,7 @@ class Bridge {
   }
 
   void drain(double now) {
-    for (std::size_t read = 0; read < kMaxBoardDatagramsPerDrain; ++read) {
+    for (std::size_t read = 0; read < kMaxDatagramsPerDrain; ++read) {
       auto d = board_->receive();
       if (!d) break;
       if (d->from != *board_address_) {  // the board answers from its own port; anyone else is not the board
@@ -165,7 +165,13 @@ class Bridge {
     }
     for (auto& e : endpoints_) {
       if (e->udp) {
-        while (auto d = e->udp->receive()) {
+        for (std::size_t read = 0; read < kMaxDatagramsPerDrain; ++read) {
+          auto d = e->udp->receive();
+          if (!d) break;
+          if (e->spec.kind == EndpointSpec::Kind::Udp && d->from != *e->udp->partner()) {  // udp:HOST:PORT hears its peer only
+            ++ignored_other_address_;
+            continue;
+          }
           e->parser->parse_datagram(d->bytes, [&](const mavlink::Frame& f) { router_.route(f, e->link, now); });
         }
       } else if (e->tcp && e->tcp->wait_readable(0)) {

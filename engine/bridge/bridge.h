@@ -62,7 +62,7 @@ struct BridgeHealth {
   std::vector<LinkHealth> links;               ///< board first, then clients, then endpoints
   std::size_t clients = 0;
   uint64_t duplicates = 0;
-  uint64_t ignored_other_address = 0;  ///< datagrams on the board link from an address that is not the board's
+  uint64_t ignored_other_address = 0;  ///< datagrams on the board link not from the board, or on a udp: endpoint not from its peer
   uint64_t untracked_frames = 0;       ///< board frames from sources beyond kMaxLossSources (not in `loss`)
 };
 
