@@ -6,6 +6,7 @@
 
 #include "cli/adb_options.h"
 #include "cli/commands.h"
+#include "cli/number_check.h"
 #include "engine/bridge/bridge.h"
 #include "tui/bridge_dashboard.h"
 #include "tui/draw.h"
@@ -32,7 +33,8 @@ nlohmann::json to_json(const bridge::BridgeHealth& h) {
   nlohmann::json j = {{"type", "link"}, {"uptime_s", h.uptime_s}, {"board", h.board_state},
                       {"heartbeat_age_s", h.heartbeat_age_s ? nlohmann::json(*h.heartbeat_age_s) : nlohmann::json(nullptr)},
                       {"rtt_ms", h.rtt_ms ? nlohmann::json(*h.rtt_ms) : nlohmann::json(nullptr)},
-                      {"clients", h.clients}, {"duplicates", h.duplicates}};
+                      {"clients", h.clients}, {"duplicates", h.duplicates},
+                      {"ignored_other_address", h.ignored_other_address}, {"untracked_frames", h.untracked_frames}};
   nlohmann::json loss = nlohmann::json::object();
   for (const auto& [source, l] : h.loss) loss[source] = {{"received", l.received}, {"lost", l.lost}, {"loss_pct", l.loss_pct}};
   j["loss"] = loss;
@@ -72,6 +74,7 @@ std::string to_line(const bridge::BridgeHealth& h) {
     line += "  " + l.name + (l.connected ? " " : " (down) ") + std::to_string(l.packets_in) + "/" + std::to_string(l.packets_out) + " pkt";
   }
   if (h.duplicates) line += "  duplicates dropped " + std::to_string(h.duplicates);
+  if (h.ignored_other_address) line += "  ignored (not the board) " + std::to_string(h.ignored_other_address);
   return line;
 }
 
@@ -170,18 +173,18 @@ void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state) 
       "The board link without the simulator: route MAVLink between the board's GCS instance, local clients "
       "(127.0.0.1:14600) and --endpoint links, like mavlink-router; link health every second");
   sub->add_option("-i,--target-ip", c.board_ip, "The board's IP (a VOXL2 on USB-Ethernet: 192.168.101.2)")->capture_default_str();
-  sub->add_option("--port", c.board_port, "The board's GCS MAVLink instance")->capture_default_str()->check(CLI::Range(1, 65535));
+  sub->add_option("--port", c.board_port, "The board's GCS MAVLink instance")->capture_default_str()->check(number_in(1, 65535));
   sub->add_option("--local-port", c.local_port,
                   "Local port towards the board: fixed, since PX4 answers only the first port it heard")
-      ->capture_default_str()->check(CLI::Range(1, 65535));
+      ->capture_default_str()->check(number_in(1, 65535));
   sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local clients (other hitl commands); 0: none")
-      ->capture_default_str()->check(CLI::Range(0, 65535));
+      ->capture_default_str()->check(number_in(0, 65535));
   sub->add_option("--endpoint", o->endpoints,
                   "More links: udp:HOST:PORT (QGroundControl: udp:127.0.0.1:14550), udpin:PORT, tcp:HOST:PORT; repeatable")
       ->type_name("KIND:ADDRESS");
   sub->add_option("--dedup", o->dedup_ms, "Drop a frame seen again within this many ms (arriving on two paths); 0: off")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  sub->add_option("--duration", c.duration_s, "Seconds to run (0: until Ctrl-C)")->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(non_negative_number());
+  sub->add_option("--duration", c.duration_s, "Seconds to run (0: until Ctrl-C)")->capture_default_str()->check(non_negative_number());
   sub->add_flag("--tui", o->tui,
                 "The live dashboard (docs/tui.md): each link's packet rates, loss, rtt, HEARTBEAT age; the board's "
                 "vehicle, EKF and dsp_hitl panels; keys a arm, d disarm, t takeoff, l land, s shell, ? help, q quit. "

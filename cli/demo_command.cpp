@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/number_check.h"
 #include "engine/hil/session.h"
 #include "engine/model/x500_defaults.h"
 #include "engine/net/udp_endpoint.h"
@@ -206,7 +207,7 @@ void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_option("-t,--trajectory", o->trajectory_file, "Another trajectory file (default: docs/examples/square.json, built in)")
       ->check(CLI::ExistingFile)->type_name("FILE.json");
   sub->add_option("--speed", o->speed, "Real-time factor; 0: as fast as lockstep allows")->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   sub->add_option("--trajectory-mode", o->mode, "velocity (Position mode) or attitude (Stabilized)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
                                                                                   {"attitude", vehicle::StickMode::Attitude}}))

@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "cli/number_check.h"
 #include "engine/doctor/check_catalog.h"
 #include "engine/doctor/doctor.h"
 
@@ -94,13 +95,13 @@ void add_doctor_command(CLI::App& app, GlobalOptions& options, RunState& state) 
                                  "simulator): pass/warn/fail/skip with what was seen and the fix");
   add_link_options(sub, o->link);
   sub->add_option("--hil-port", o->hil_port, "The board's HIL MAVLink instance (only looked at, never talked to)")
-      ->capture_default_str()->check(CLI::Range(1, 65535));
-  sub->add_option("--vio-port", o->vio_port, "voxl-hitl-vio-server's ODOMETRY port")->capture_default_str()->check(CLI::Range(1, 65535));
+      ->capture_default_str()->check(number_in(1, 65535));
+  sub->add_option("--vio-port", o->vio_port, "voxl-hitl-vio-server's ODOMETRY port")->capture_default_str()->check(number_in(1, 65535));
   sub->add_flag("--no-vio", [o](std::int64_t) { o->vio = false; }, "VIO is not used: skip its checks");
   sub->add_flag("--adb", o->adb, "The board is on adb: check adb devices and run the VIO checks through adb shell");
   sub->add_option("--adb-serial", o->adb_serial, "Which adb device is the board (implies --adb)");
   sub->add_option("--listen", o->listen_s, "Seconds to listen to the board and the session (rates need two reports)")
-      ->capture_default_str()->check(CLI::Range(1.2, 60.0));
+      ->capture_default_str()->check(number_in(1.2, 60.0));
   sub->footer(
       "Checks, in order (docs/doctor.md): host (route to the board, adb devices, ports), link (HEARTBEAT, HIL mode,\n"
       "mavlink status, HIL_ACTUATOR_CONTROLS rate, flags 0x0F, armed bit), board sensors (dsp_hitl counters), parameters\n"

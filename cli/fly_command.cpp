@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "cli/number_check.h"
 #include "engine/hil/session_config.h"
 #include "engine/mavlink/enums.h"
 #include "engine/vehicle/command_client.h"
@@ -247,7 +248,7 @@ void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   auto* sub = app.add_subcommand("fly", "Take off, land, hold or fly a trajectory file, and wait for the outcome");
   sub->require_subcommand(1);
   add_link_options(sub, o->link);
-  sub->add_option("--wait", o->wait_s, "Seconds to wait for the outcome")->capture_default_str()->check(CLI::PositiveNumber);
+  sub->add_option("--wait", o->wait_s, "Seconds to wait for the outcome")->capture_default_str()->check(positive_number());
   sub->footer("Arm first (hitl arm). Exit: 0 the outcome was seen, 1 refused or timed out.");
   auto add = [&](const char* name, const char* help) {
     auto* c = sub->add_subcommand(name, help);
@@ -255,7 +256,7 @@ void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
     return c;
   };
   add("takeoff", "NAV_TAKEOFF; done when the altitude is reached")
-      ->add_option("--alt", o->alt_m, "Metres above home (default: the board's MIS_TAKEOFF_ALT)")->check(CLI::PositiveNumber);
+      ->add_option("--alt", o->alt_m, "Metres above home (default: the board's MIS_TAKEOFF_ALT)")->check(positive_number());
   add("land", "NAV_LAND; done when the board has landed and disarmed");
   add("hold", "Switch to Hold (PX4 AUTO.LOITER); done when HEARTBEAT shows it");
   auto* traj = add("trajectory",
@@ -263,7 +264,7 @@ void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                    "(RC_CHANNELS_OVERRIDE), hold, land, disarm; report the tracking error (--json: the trace)");
   traj->add_option("FILE", o->trajectory_file, "Waypoints {t, x, y, z, yaw} in ENU metres/radians")->required()
       ->check(CLI::ExistingFile);
-  traj->add_option("--rate", o->rc_rate_hz, "RC_CHANNELS_OVERRIDE rate, Hz")->capture_default_str()->check(CLI::Range(2.0, 100.0));
+  traj->add_option("--rate", o->rc_rate_hz, "RC_CHANNELS_OVERRIDE rate, Hz")->capture_default_str()->check(number_in(2.0, 100.0));
   traj->add_option("--mode", o->mode,
                    "velocity: Position mode, sticks are velocities; attitude: Stabilized, sticks are tilt and thrust "
                    "(the pilot closes position and velocity itself)")

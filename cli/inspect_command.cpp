@@ -8,6 +8,7 @@
 #include <set>
 
 #include "cli/commands.h"
+#include "cli/number_check.h"
 #include "engine/mavlink/enums.h"
 #include "cli/traffic_table.h"
 #include "cli/value_types.h"
@@ -267,7 +268,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   bool ok = true;
   for (const auto& r : results) ok = ok && r.ok;
   if ((*inspector)->record_failed()) {
-    log_error(cmd, "--record: writing '" + opt.record + "' failed (disk full?); the recording is incomplete");
+    log_error(cmd, "--record: " + (*inspector)->record_error() + "; the recording is incomplete");
     ok = false;
   }
 
@@ -311,7 +312,7 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
       "Exit: 0 ok (every --expect met), 1 an expectation failed, 2 bad usage or the source cannot be opened.");
   auto* src = sub->add_option_group("Source", "exactly one of --port, --connect, --tlog");
   src->add_option("--port", opt->port, "Listen passively on this UDP port (e.g. 14570 for ODOMETRY)")
-      ->check(CLI::Range(1, 65535));
+      ->check(number_in(1, 65535));
   src->add_option("--connect", opt->connect,
                   "Talk to a MAVLink instance at HOST:PORT, sending HEARTBEAT at 1 Hz so it streams to us")
       ->type_name("HOST:PORT");
@@ -333,24 +334,24 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
                 "The live dashboard (docs/tui.md): a row per message (rate against --expect, jitter, max gap), "
                 "STATUSTEXT, per-source loss; q quits. Without a terminal: the summary lines");
   sub->add_option("--duration", opt->duration_s, "Stop after this many seconds (tlog: of log time)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->type_name("S");
   sub->add_option("--count", opt->count, "Stop after N messages (of the --show names when given)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->type_name("N");
   sub->add_option("--expect", opt->expect, "Rates the link must carry; exit 1 when one falls outside the tolerance")
       ->type_name(value_type::kMessageRateList);
   sub->add_option("--tolerance", opt->tolerance_pct, "Accepted deviation from each --expect rate, percent")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(number_in(0.0, 100.0))
       ->type_name("PCT");
   sub->add_option("--sysid", opt->sysid, "System id of our HEARTBEAT with --connect")
       ->capture_default_str()
-      ->check(CLI::Range(1, 255))
+      ->check(number_in(1, 255))
       ->group("Identity");
   sub->add_option("--compid", opt->compid, "Component id of our HEARTBEAT with --connect")
       ->capture_default_str()
-      ->check(CLI::Range(1, 255))
+      ->check(number_in(1, 255))
       ->group("Identity");
   sub->add_option("--signing-key", opt->signing_key,
                   "Verify MAVLink 2 signatures with this key (64 hex digits, or a passphrase hashed with SHA-256)")

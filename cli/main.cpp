@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "cli/number_check.h"
 #include "cli/version.h"
 
 int main(int argc, char** argv) {
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   add_demo_command(app, options, state);
   add_completion_command(app, options, state);
   add_reference_command(app, options, state);
+  add_number_checks(app);  // every number option: finite, of sane size (cli/number_check.h)
 
   try {
     app.parse(argc, argv);

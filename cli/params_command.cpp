@@ -194,21 +194,12 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
       log_error("params", current.error().message);
       return kExitFailed;
     }
-    vehicle::ParamValue wanted;
-    char* end = nullptr;
-    if (current->type == vehicle::ParamType::Int32) {
-      const long v = std::strtol(o.value.c_str(), &end, 10);
-      wanted = vehicle::ParamValue::int32(static_cast<int32_t>(v));
-    } else {
-      const float v = std::strtof(o.value.c_str(), &end);
-      wanted = vehicle::ParamValue::real32(v);
-    }
-    if (o.value.empty() || end != o.value.c_str() + o.value.size() || !std::isfinite(wanted.as_double())) {
-      log_error("params", "set " + name + ": '" + o.value + "' is not a valid " +
-                              (current->type == vehicle::ParamType::Int32 ? "INT32" : "REAL32"));
+    const auto wanted = vehicle::parse_param_value(o.value, current->type);
+    if (!wanted) {
+      log_error("params", "set " + name + ": " + wanted.error().message);
       return kExitUsage;
     }
-    auto r = s->client->set(name, wanted);
+    auto r = s->client->set(name, *wanted);
     if (!r) {
       log_error("params", r.error().message);
       return kExitFailed;

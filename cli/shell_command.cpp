@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "cli/number_check.h"
 #include "engine/vehicle/shell_client.h"
 #include "engine/vehicle/shell_status.h"
 
@@ -68,7 +69,7 @@ void add_shell_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   auto* sub = app.add_subcommand("shell", "The PX4 shell on the board over MAVLink (one command with -c, or lines from stdin)");
   add_link_options(sub, o->link);
   sub->add_option("-c,--command", o->command, "Run one command and print its output, e.g. \"qshell dsp_hitl status\"");
-  sub->add_option("--command-timeout", o->timeout_s, "Seconds a command may take")->capture_default_str()->check(CLI::PositiveNumber);
+  sub->add_option("--command-timeout", o->timeout_s, "Seconds a command may take")->capture_default_str()->check(positive_number());
   sub->add_flag("--ignore-status", o->ignore_status,
                 "Exit 0 even when a command returned non-zero on the board (PX4's \"Command 'NAME' failed, returned N.\")");
   sub->footer("Exit: 0 ok, 1 a command returned non-zero on the board (or the shell did not answer).\n"

@@ -11,6 +11,7 @@
 
 #include "cli/adb_options.h"
 #include "cli/commands.h"
+#include "cli/number_check.h"
 #include "engine/hil/session.h"
 #include "engine/net/socket_address.h"
 #include "engine/vehicle/trajectory.h"
@@ -74,6 +75,9 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
   j["crc_errors"] = s.crc_errors;
   j["parse_errors"] = s.parse_errors;
   j["clients"] = s.clients;
+  if (!s.record_error.empty()) j["record_error"] = s.record_error;
+  j["clients_refused"] = s.clients_refused;
+  j["client_frames_dropped"] = s.client_frames_dropped;
   j["routed"] = {{"to_board", s.routed_to_board}, {"to_clients", s.routed_to_clients}};
   if (!s.trajectory_state.empty())
     j["trajectory"] = {{"state", s.trajectory_state},
@@ -314,7 +318,9 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     print_summary(snap, end_name(*end));
     if (tunnel) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
   }
-  const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed;
+  if (!snap.record_error.empty()) log_error(cmd, "--record: " + snap.record_error + "; the recording is incomplete");
+  const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed ||
+                      !snap.record_error.empty();
   return failed ? kExitFailed : kExitOk;
 }
 
@@ -335,41 +341,41 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_option("-i,--target-ip,--mavlink-addr", c.target_ip, "The board's IP (USB-Ethernet; --adb reaches it through adb instead)")
       ->capture_default_str()->group(link);
   sub->add_option("--hil-port,--mavlink-udp-remote-port", c.hil_port, "The board's HIL MAVLink port")
-      ->capture_default_str()->check(CLI::Range(1, 65535))->group(link);
+      ->capture_default_str()->check(number_in(1, 65535))->group(link);
   sub->add_option("--local-port,--mavlink-udp-local-port", c.local_port,
                   "Fixed local port: PX4 keeps answering the first port it heard")
-      ->capture_default_str()->check(CLI::Range(0, 65535))->group(link);
+      ->capture_default_str()->check(number_in(0, 65535))->group(link);
   sub->add_option("--bind", c.bind_address, "Local address for the simulator's sockets")->capture_default_str()->group(link);
   auto* px4_sitl = sub->add_option("--px4-sitl", opt->px4_sitl,
                                    "Serve PX4 SITL's simulator_mavlink instead of a board: tcp:PORT (hitl listens, "
                                    "default tcp:4560) or udp:PORT")
                        ->expected(0, 1)->type_name("[tcp:4560|udp:PORT]")->group(link);
   sub->add_option("--sysid", opt->sysid, "System id of the simulator's HEARTBEAT and frames")
-      ->capture_default_str()->check(CLI::Range(1, 255))->group(link);
-  sub->add_option("--compid", opt->compid, "Component id of the simulator")->capture_default_str()->check(CLI::Range(1, 255))->group(link);
+      ->capture_default_str()->check(number_in(1, 255))->group(link);
+  sub->add_option("--compid", opt->compid, "Component id of the simulator")->capture_default_str()->check(number_in(1, 255))->group(link);
   sub->add_option("--protocol-version", opt->protocol_version, "MAVLink protocol version")
       ->capture_default_str()->check(CLI::IsMember({"1.0", "2.0"}))->group(link);
   add_adb_options(*sub, opt->adb, link);
 
   const char* vio = "VIO (ODOMETRY from ground truth)";
   sub->add_option("--vio-ip,--vio-mavlink-addr", c.vio_ip, "Where voxl-hitl-vio-server listens (default: the target IP)")->group(vio);
-  sub->add_option("--vio-port,--vio-udp-remote-port", c.vio_port, "VIO port")->capture_default_str()->check(CLI::Range(1, 65535))->group(vio);
-  sub->add_option("--vio-rate,--vio-update-rate", c.vio_rate_hz, "ODOMETRY rate, Hz")->capture_default_str()->check(CLI::PositiveNumber)->group(vio);
+  sub->add_option("--vio-port,--vio-udp-remote-port", c.vio_port, "VIO port")->capture_default_str()->check(number_in(1, 65535))->group(vio);
+  sub->add_option("--vio-rate,--vio-update-rate", c.vio_rate_hz, "ODOMETRY rate, Hz")->capture_default_str()->check(positive_number())->group(vio);
   sub->add_flag("--no-vio", opt->no_vio, "Send no ODOMETRY")->group(vio);
   sub->add_option("--en-vio-output", opt->en_vio_output, "Send ODOMETRY (true/false; the spec's en_vio_output)")->group(vio);
 
   const char* timing = "Timing";
   sub->add_option("--speed", c.speed, "Real-time factor to hold; 0 = as fast as possible")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(timing);
+      ->capture_default_str()->check(non_negative_number())->group(timing);
   sub->add_option("--duration", c.duration_s, "Stop after this many simulated seconds (0: until Ctrl-C)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->type_name("S")->group(timing);
+      ->capture_default_str()->check(non_negative_number())->type_name("S")->group(timing);
   sub->add_flag("--lockstep,--enable-lockstep", c.lockstep,
                 "Step only after the flight stack answered the previous sensors (a board over UDP: paces the simulator)")
       ->group(timing);
   sub->add_option("--lockstep-timeout", c.lockstep_timeout_s, "How long lockstep waits for an answer before stepping on, s")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(timing);
+      ->capture_default_str()->check(positive_number())->group(timing);
   sub->add_option("--actuator-timeout", c.actuator_timeout_s, "Motors stop when no HIL_ACTUATOR_CONTROLS came for this long, s")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(timing);
+      ->capture_default_str()->check(positive_number())->group(timing);
   sub->add_flag("--realtime", c.realtime, "Ask for SCHED_FIFO and mlockall (says so when not permitted)")->group(timing);
 
   const char* model = "Model";
@@ -401,13 +407,13 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
 
   const char* route = "Clients and recording";
   sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local MAVLink clients (other hitl commands); 0: none")
-      ->capture_default_str()->check(CLI::Range(0, 65535))->group(route);
+      ->capture_default_str()->check(number_in(0, 65535))->group(route);
   sub->add_option("--gcs", c.gcs, "Also route the board's telemetry to a ground station (QGroundControl: 127.0.0.1:14550)")
       ->type_name("HOST:PORT")->group(route);
   sub->add_option("--truth-rate", c.truth_rate_hz,
                   "Ground truth to clients as ODOMETRY (sysid " + std::to_string(hil::kSimulatorSystemId) +
                       ", estimator MOCAP), Hz; 0: none")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(route);
+      ->capture_default_str()->check(non_negative_number())->group(route);
   sub->add_option("--record", c.record_path, "Save everything sent and received to a .tlog")->type_name("FILE.tlog")->group(route);
   // Through adb the board's ports are the relay's; an address for them would be ignored.
   for (const char* adb_name : {"--adb", "--adb-serial"})

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_check.h"
 #include "target/emulator/board.h"
 
 namespace hitl::cli {
@@ -94,15 +95,15 @@ void add_target_command(CLI::App& app, GlobalOptions& options, RunState& state) 
       "Example:  hitl target &  hitl sim   # a closed loop on one machine");
   sub->add_option("--bind", config->bind_address, "Local address of the board's sockets")->capture_default_str();
   sub->add_option("--hil-port", config->hil_port, "The HIL MAVLink instance (hitl sim talks to it)")
-      ->capture_default_str()->check(CLI::Range(1, 65535));
+      ->capture_default_str()->check(number_in(1, 65535));
   sub->add_option("--gcs-port", config->gcs_port, "The GCS MAVLink instance (0: none)")
-      ->capture_default_str()->check(CLI::Range(0, 65535));
+      ->capture_default_str()->check(number_in(0, 65535));
   sub->add_option("--vio-port", config->vio_port, "voxl-hitl-vio-server's ODOMETRY listener (0: none)")
-      ->capture_default_str()->check(CLI::Range(0, 65535));
+      ->capture_default_str()->check(number_in(0, 65535));
   sub->add_flag("--lockstep", config->lockstep,
                 "Run on HIL_SENSOR.time_usec and answer each HIL_SENSOR (pair with hitl sim --lockstep --speed 0)");
   sub->add_option("--duration", config->duration_s, "Stop after this many seconds of board time")
-      ->check(CLI::NonNegativeNumber)->type_name("S");
+      ->check(non_negative_number())->type_name("S");
   auto faults = std::make_shared<std::vector<std::string>>();
   std::string fault_list;
   for (const auto& n : target::fault_names()) fault_list += (fault_list.empty() ? "" : ", ") + n;

@@ -26,6 +26,8 @@ namespace msg = mavlink::msg;
 constexpr double kReconnectPeriod_s = 2.0;
 constexpr int kTcpConnectTimeout_ms = 500;
 constexpr std::size_t kTimesyncRemembered = 8;
+constexpr std::size_t kMaxClientDatagramsPerDrain = 64;
+constexpr std::size_t kMaxDatagramsPerDrain = 256;
 
 std::string source_key(uint8_t sysid, uint8_t compid) { return std::to_string(sysid) + "/" + std::to_string(compid); }
 
@@ -126,6 +128,7 @@ class Bridge {
       connect_tcp_endpoints(now);
       wait_readable(std::min(50.0, (next_tick_s_ - monotonic_s()) * 1000.0));
       drain(monotonic_s());
+      if (clients_) clients_->pump();
       watch_board(monotonic_s());
     }
     return Ok{};
@@ -140,23 +143,35 @@ class Bridge {
       if (e->udp) fds.push_back({e->udp->fd(), POLLIN, 0});
     }
     const bool any_tcp = std::any_of(endpoints_.begin(), endpoints_.end(), [](const auto& e) { return e->tcp.has_value(); });
-    const int ms = any_tcp ? 5 : std::max(0, static_cast<int>(timeout_ms));  // TCP is polled by its own wait
+    int ms = any_tcp ? 5 : std::max(0, static_cast<int>(timeout_ms));  // TCP is polled by its own wait
+    if (clients_ && clients_->queued_frames() > 0) ms = 0;  // the client port's send bound left some for later
     (void)::poll(fds.data(), fds.size(), ms);
   }
 
   void drain(double now) {
-    while (auto d = board_->receive()) {
+    for (std::size_t read = 0; read < kMaxDatagramsPerDrain; ++read) {
+      auto d = board_->receive();
+      if (!d) break;
+      if (d->from != *board_address_) {  // the board answers from its own port; anyone else is not the board
+        ++ignored_other_address_;
+        continue;
+      }
       board_parser_.parse_datagram(d->bytes, [&](const mavlink::Frame& f) { on_board_frame(f, now); });
     }
     if (clients_) {
-      while (auto d = clients_->receive()) {
-        const auto from = d->from;
-        clients_parser_.parse_datagram(d->bytes, [&](const mavlink::Frame& f) { router_.route(f, clients_link_, now, from); });
-      }
+      clients_->receive_some(kMaxClientDatagramsPerDrain, [&](const net::Datagram& d) {
+        clients_parser_.parse_datagram(d.bytes, [&](const mavlink::Frame& f) { router_.route(f, clients_link_, now, d.from); });
+      });
     }
     for (auto& e : endpoints_) {
       if (e->udp) {
-        while (auto d = e->udp->receive()) {
+        for (std::size_t read = 0; read < kMaxDatagramsPerDrain; ++read) {
+          auto d = e->udp->receive();
+          if (!d) break;
+          if (e->spec.kind == EndpointSpec::Kind::Udp && d->from != *e->udp->partner()) {  // udp:HOST:PORT hears its peer only
+            ++ignored_other_address_;
+            continue;
+          }
           e->parser->parse_datagram(d->bytes, [&](const mavlink::Frame& f) { router_.route(f, e->link, now); });
         }
       } else if (e->tcp && e->tcp->wait_readable(0)) {
@@ -190,7 +205,7 @@ class Bridge {
 
   void on_board_frame(const mavlink::Frame& f, double now) {
     last_frame_s_ = now;
-    sequences_[source_key(f.sysid, f.compid)].observe(f.seq);
+    track_loss(f);
     if (f.is<msg::Heartbeat>() && f.as<msg::Heartbeat>().autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid)) {
       last_heartbeat_s_ = now;
       board_sysid_ = f.sysid;
@@ -205,6 +220,25 @@ class Bridge {
       }
     }
     router_.route(f, board_link_, now);
+  }
+
+  /// Per-source loss, for at most kMaxLossSources sources (a board has a handful); frames of
+  /// further sources are counted apart and said once.
+  void track_loss(const mavlink::Frame& f) {
+    const std::string key = source_key(f.sysid, f.compid);
+    auto it = sequences_.find(key);
+    if (it == sequences_.end()) {
+      if (sequences_.size() >= kMaxLossSources) {
+        if (untracked_frames_++ == 0)
+          observer_.on_event("the board link shows more than " + std::to_string(kMaxLossSources) +
+                                 " sources (sysid/compid); loss is tracked for the first ones only (frames of others "
+                                 "counted: untracked_frames)",
+                             true);
+        return;
+      }
+      it = sequences_.emplace(key, mavlink::SequenceTracker{}).first;
+    }
+    it->second.observe(f.seq);
   }
 
   void watch_board(double now) {
@@ -287,6 +321,8 @@ class Bridge {
       h.links.push_back(link_health(e->link, partner, e->udp ? e->udp->partner().has_value() : e->tcp.has_value()));
     }
     h.duplicates = router_.duplicates();
+    h.ignored_other_address = ignored_other_address_;
+    h.untracked_frames = untracked_frames_;
     return h;
   }
 
@@ -303,6 +339,8 @@ class Bridge {
   std::vector<std::unique_ptr<Endpoint>> endpoints_;
   router::LinkId board_link_ = 0, clients_link_ = 0;
   std::map<std::string, mavlink::SequenceTracker> sequences_;
+  uint64_t ignored_other_address_ = 0;
+  uint64_t untracked_frames_ = 0;
   std::deque<int64_t> timesync_sent_ns_;
   std::optional<double> rtt_ms_;
   uint8_t board_sysid_ = 0;

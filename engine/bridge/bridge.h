@@ -4,7 +4,8 @@
 // --endpoint links. Once a second it reports link health: partner, packets and bytes each way,
 // per-source loss, round-trip time (TIMESYNC, as PX4 answers it) and the age of the board's last
 // HEARTBEAT; it says within 2 s when the board goes away and when it comes back, and keeps every
-// socket open meanwhile so clients and traffic resume by themselves.
+// socket open meanwhile so clients and traffic resume by themselves. The board link hears only the
+// board's address (anything else is dropped unparsed and counted), and the loss table is bounded.
 #pragma once
 
 #include <atomic>
@@ -25,6 +26,7 @@ namespace hitl::bridge {
 inline constexpr uint8_t kBridgeSystemId = 255;        ///< with compid MAV_COMP_ID_UDP_BRIDGE
 inline constexpr uint8_t kBridgeComponentId = 240;
 inline constexpr double kBoardGoneAfter_s = 1.5;       ///< no frame this long: gone (HEARTBEAT is 1 Hz)
+inline constexpr std::size_t kMaxLossSources = 32;     ///< per-source loss kept for at most this many sysid/compid
 
 struct BridgeConfig {
   std::string board_ip = "127.0.0.1";               ///< -i (a VOXL2 on USB-Ethernet: 192.168.101.2)
@@ -60,6 +62,8 @@ struct BridgeHealth {
   std::vector<LinkHealth> links;               ///< board first, then clients, then endpoints
   std::size_t clients = 0;
   uint64_t duplicates = 0;
+  uint64_t ignored_other_address = 0;  ///< datagrams on the board link not from the board, or on a udp: endpoint not from its peer
+  uint64_t untracked_frames = 0;       ///< board frames from sources beyond kMaxLossSources (not in `loss`)
 };
 
 class BridgeObserver {

@@ -15,6 +15,7 @@
 #include "engine/hil/data_paths.h"
 #include "engine/hil/pacer.h"
 #include "engine/hil/sensor_messages.h"
+#include "engine/hil/step_check.h"
 #include "engine/mavlink/enums.h"
 #include "engine/mavlink/frame_encoder.h"
 #include "engine/mavlink/frame_parser.h"
@@ -38,6 +39,11 @@ bool is_hil_message(uint32_t msgid) {
   return msgid == mavlink::msg::HilSensor::kId || msgid == mavlink::msg::HilGps::kId ||
          msgid == mavlink::msg::HilActuatorControls::kId || msgid == mavlink::msg::HilStateQuaternion::kId;
 }
+
+/// Per drain, at most this many datagrams from the flight stack's socket and from the client port:
+/// a flood waits in the kernel's buffer (and overflows there) instead of stalling the step.
+constexpr std::size_t kMaxStackDatagramsPerDrain = 256;
+constexpr std::size_t kMaxClientDatagramsPerDrain = 64;
 
 struct Counter {
   uint64_t count = 0;
@@ -102,6 +108,10 @@ struct Session::Impl {
   double first_sensor_wall_s = -1;
   bool warned_no_answer = false;
   bool warned_lockstep = false;
+  bool warned_clients_full = false;
+  bool warned_record = false;
+  bool sensor_sent = false;      ///< the last step sent a HIL_SENSOR (lockstep owes it an answer)
+  bool warned_clients_dropped = false;
   bool stack_gone = false;
   double window_start_wall_s = 0;
   double window_start_sim_s = 0;
@@ -124,7 +134,15 @@ struct Session::Impl {
 
   // --- sending -------------------------------------------------------------------------------
   void record(std::span<const uint8_t> bytes) {
-    if (recorder) recorder->write(static_cast<uint64_t>(unix_time_ns() / 1000), bytes);
+    if (recorder && recorder->ok()) recorder->write(static_cast<uint64_t>(unix_time_ns() / 1000), bytes);
+  }
+
+  /// --record failing (a full disk) is said at once, naming the file and the error; the session
+  /// runs on (the board needs its sensors) and ends with an error (SessionSnapshot::record_error).
+  void watch_recorder(Observer& observer) {
+    if (!recorder || recorder->ok() || warned_record) return;
+    warned_record = true;
+    observer.on_event({Severity::Error, "--record: " + recorder->error() + "; recording stopped, the session runs on"});
   }
 
   template <class M>
@@ -196,7 +214,9 @@ struct Session::Impl {
         stack_parser->feed(*bytes, [&](const mavlink::Frame& f) { on_stack_frame(f, now_s); });
       }
     } else {
-      while (auto d = hil_udp->receive()) {
+      for (std::size_t read = 0; read < kMaxStackDatagramsPerDrain; ++read) {
+        auto d = hil_udp->receive();
+        if (!d) break;
         if (target && d->from != *target) {  // PX4 answers from its own port; anything else is not our board
           ++ignored_other_address;
           continue;
@@ -205,13 +225,34 @@ struct Session::Impl {
       }
     }
     if (clients) {
-      while (auto d = clients->receive()) {
-        const auto from = d->from;
-        client_parser->parse_datagram(d->bytes, [&](const mavlink::Frame& f) {
+      clients->receive_some(kMaxClientDatagramsPerDrain, [&](const net::Datagram& d) {
+        client_parser->parse_datagram(d.bytes, [&](const mavlink::Frame& f) {
           if (is_hil_message(f.msgid)) return;
-          router.route(f, clients_link, now_s, from);  // to the board, and to the other clients
+          router.route(f, clients_link, now_s, d.from);  // to the board, and to the other clients
         });
-      }
+      });
+    }
+  }
+
+  /// Sends what the step queued for clients (bounded per step: net::ClientPortLimits) and says
+  /// once when a bound was hit.
+  void serve_clients(Observer& observer) {
+    if (!clients) return;
+    clients->pump();
+    const auto& st = clients->stats();
+    if (st.refused_datagrams > 0 && !warned_clients_full) {
+      warned_clients_full = true;
+      observer.on_event({Severity::Warning, "client port: " + std::to_string(clients->limits().max_clients) +
+                                                " clients already; datagrams from further senders are dropped (counted: "
+                                                "clients_refused) until one goes silent for " +
+                                                std::to_string(net::ClientPort::kClientTimeout.count()) + " s"});
+    }
+    if (st.dropped_frames > 0 && !warned_clients_dropped) {
+      warned_clients_dropped = true;
+      observer.on_event({Severity::Warning, "client port: more to send than " +
+                                                std::to_string(clients->limits().max_datagrams_out) +
+                                                " datagrams per step; frames to clients dropped (counted: "
+                                                "client_frames_dropped)"});
     }
   }
 
@@ -345,8 +386,11 @@ struct Session::Impl {
     const double now_s = monotonic_s();
     drain(now_s);
     send_status_to_clients(now_s);
+    serve_clients(observer);
+    watch_recorder(observer);
     if (take_controls(observer)) return Ok{};
-    if (!std::exchange(resumed, false)) lockstep_wait(observer);
+    // Lockstep waits for the answer to the last HIL_SENSOR; a step shorter than the IMU period sends none every step.
+    if (!std::exchange(resumed, false) && std::exchange(sensor_sent, false)) lockstep_wait(observer);
     model->set_motor_commands(actuators.commands(unpaused_s(monotonic_s())));
     if (auto st = model->step(); !st) return st;
     const auto& state = model->state();
@@ -355,6 +399,7 @@ struct Session::Impl {
     const uint64_t t_us = mavlink::wire::s_to_us(time_offset_s + state.time_s);
     if (frame.imu || frame.mag || frame.baro) {
       send_to_stack(make_hil_sensor(frame, t_us));
+      sensor_sent = true;
       paths->on_hil_sensor(frame.imu.has_value(), frame.mag.has_value(), frame.baro.has_value(), sent_s);
       if (first_sensor_wall_s < 0) first_sensor_wall_s = monotonic_s();
     }
@@ -455,6 +500,8 @@ struct Session::Impl {
     s.crc_errors = stack_parser->stats().crc_errors;
     s.parse_errors = stack_parser->stats().parse_errors;
     s.clients = clients ? clients->client_count() : 0;
+    s.clients_refused = clients ? clients->stats().refused_datagrams : 0;
+    s.client_frames_dropped = clients ? clients->stats().dropped_frames : 0;
     s.routed_to_board = routed_to_board;
     s.routed_to_clients = routed_to_clients;
     if (pilot) {
@@ -472,6 +519,7 @@ struct Session::Impl {
     s.resets = resets;
     s.speed = config.speed;
     s.lockstep = lockstep();
+    if (recorder) s.record_error = recorder->error();
     return s;
   }
 
@@ -514,6 +562,11 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   if (!(config.vio_rate_hz > 0)) return Error{"--vio-rate must be > 0"};
   if (!(config.truth_rate_hz >= 0)) return Error{"--truth-rate must be >= 0 (0: no truth to clients)"};
   if (!(config.speed >= 0)) return Error{"--speed must be >= 0 (0: as fast as possible)"};
+  if (!std::isfinite(config.actuator_timeout_s) || !(config.actuator_timeout_s > 0))
+    return Error{"--actuator-timeout must be a finite number > 0"};
+  if (!std::isfinite(config.lockstep_timeout_s) || !(config.lockstep_timeout_s > 0))
+    return Error{"--lockstep-timeout must be a finite number > 0"};
+  if (auto st = check_step_divides_sensor_periods(config.world.physics.step_s, vehicle); !st) return st.error();
 
   if (config.link == FlightStackLink::SitlTcp) {
     auto server = net::TcpServer::listen(config.bind_address, config.sitl_port, "--px4-sitl");
@@ -582,7 +635,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     if (!w) return w.error();
     impl->recorder.emplace(std::move(w.value()));
   }
-  impl->pacer.emplace(kStepPeriod_s, config.speed);
+  impl->pacer.emplace(config.world.physics.step_s, config.speed);  // one step of simulated time per tick
   impl->paths.emplace(config);
   return std::unique_ptr<Session>(new Session(std::move(impl)));
 }
@@ -672,6 +725,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
     s.pacer->wait_next();
   }
   if (s.recorder) s.recorder->flush();
+  s.watch_recorder(observer);
   s.roll_window();
   s.publish();
   return reason;

@@ -60,6 +60,8 @@ struct SessionSnapshot {
   uint64_t crc_errors = 0;
   uint64_t parse_errors = 0;
   uint64_t clients = 0;
+  uint64_t clients_refused = 0;         ///< datagrams from senders beyond the client limit, dropped
+  uint64_t client_frames_dropped = 0;   ///< frames to clients dropped: more than the per-step send bound
   uint64_t routed_to_board = 0;
   uint64_t routed_to_clients = 0;
   uint64_t actuator_flags = 0;
@@ -76,6 +78,7 @@ struct SessionSnapshot {
   uint64_t resets = 0;           ///< times the vehicle was put back home
   double speed = 1.0;            ///< --speed (0: as fast as possible)
   bool lockstep = false;
+  std::string record_error;      ///< --record failed: the file and why (empty: fine, or not recording)
 };
 
 class Session {

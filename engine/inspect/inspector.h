@@ -59,6 +59,8 @@ class Inspector {
   std::string where() const;
   /// Frames that could not be written to --record (a full disk is reported, not ignored).
   bool record_failed() const { return recorder_ && !recorder_->ok(); }
+  /// Why (mavlink::TlogWriter::error(): the file and errno's words), empty while ok.
+  std::string record_error() const { return recorder_ ? recorder_->error() : std::string(); }
 
  private:
   Inspector(const InspectConfig& config, const mavlink::MessageSet& messages);

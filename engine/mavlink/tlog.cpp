@@ -20,13 +20,19 @@ bool TlogWriter::write(uint64_t time_unix_us, std::span<const uint8_t> frame) {
   if (!ok_) return false;
   uint8_t stamp[8];
   for (int i = 0; i < 8; ++i) stamp[i] = static_cast<uint8_t>(time_unix_us >> (56 - 8 * i));
-  ok_ = std::fwrite(stamp, 1, 8, file_.get()) == 8 && std::fwrite(frame.data(), 1, frame.size(), file_.get()) == frame.size();
+  if (std::fwrite(stamp, 1, 8, file_.get()) != 8 || std::fwrite(frame.data(), 1, frame.size(), file_.get()) != frame.size())
+    fail();
   return ok_;
 }
 
 bool TlogWriter::flush() {
-  ok_ = ok_ && std::fflush(file_.get()) == 0;
+  if (ok_ && std::fflush(file_.get()) != 0) fail();
   return ok_;
+}
+
+void TlogWriter::fail() {
+  ok_ = false;
+  error_ = "writing '" + path_ + "' failed: " + std::strerror(errno);
 }
 
 std::size_t frame_length_from_header(std::span<const uint8_t> bytes) {

@@ -20,6 +20,9 @@ class TlogWriter {
   bool write(uint64_t time_unix_us, std::span<const uint8_t> frame);
   bool flush();
   bool ok() const { return ok_; }
+  /// After a failed write or flush: "writing 'PATH' failed: No space left on device" (what
+  /// `inspect --record` and `sim --record` both say); empty while ok.
+  const std::string& error() const { return error_; }
   const std::string& path() const { return path_; }
 
  private:
@@ -29,6 +32,8 @@ class TlogWriter {
   std::unique_ptr<std::FILE, Closer> file_;
   std::string path_;
   bool ok_ = true;
+  std::string error_;
+  void fail();
 };
 
 struct TlogRecord {

@@ -1,12 +1,14 @@
 #include "engine/net/client_port.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace hitl::net {
 
 Expected<ClientPort> ClientPort::open(const std::string& bind_address, uint16_t port,
-                                      const std::vector<SocketAddress>& fixed_peers) {
+                                      const std::vector<SocketAddress>& fixed_peers, const ClientPortLimits& limits) {
   ClientPort cp;
+  cp.limits_ = limits;
   UdpEndpoint::Config c;
   c.bind_address = bind_address;
   c.bind_port = port;
@@ -27,29 +29,75 @@ std::optional<SocketAddress> ClientPort::local_address() const {
   return endpoint_->local_address();
 }
 
-std::optional<Datagram> ClientPort::receive() {
-  if (!endpoint_) return std::nullopt;
-  auto d = endpoint_->receive();
-  if (!d) return d;
-  ++stats_.datagrams_in;
+std::size_t ClientPort::receive_some(std::size_t max_datagrams, const std::function<void(const Datagram&)>& on_datagram) {
+  if (!endpoint_) return 0;
+  std::size_t read = 0;
   const auto now = std::chrono::steady_clock::now();
-  auto it = std::find_if(clients_.begin(), clients_.end(), [&](const Client& c) { return c.address == d->from; });
-  if (it == clients_.end()) clients_.push_back(Client{d->from, now, false});
-  else it->last_heard = now;
-  return d;
+  while (read < max_datagrams) {
+    auto d = endpoint_->receive();
+    if (!d) break;
+    ++read;
+    ++stats_.datagrams_in;
+    auto it = std::find_if(clients_.begin(), clients_.end(), [&](const Client& c) { return c.address == d->from; });
+    if (it != clients_.end()) {
+      it->last_heard = now;
+    } else if (clients_.size() < limits_.max_clients) {
+      clients_.push_back(Client{d->from, now, false});
+    } else {
+      ++stats_.refused_datagrams;
+      continue;
+    }
+    on_datagram(*d);
+  }
+  return read;
 }
 
 void ClientPort::broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except) {
-  if (!endpoint_) return;
-  const auto now = std::chrono::steady_clock::now();
-  clients_.erase(std::remove_if(clients_.begin(), clients_.end(),
-                                [&](const Client& c) { return !c.fixed && now - c.last_heard > kClientTimeout; }),
-                 clients_.end());
-  for (const auto& c : clients_) {
-    if (except && c.address == *except) continue;
-    if (endpoint_->send_to(c.address, bytes)) ++stats_.datagrams_out;
-    else ++stats_.send_errors;
+  if (!endpoint_ || clients_.empty()) return;
+  Queue& queue = except ? forwarded_ : own_;
+  if (queue.frames.size() >= limits_.max_queued_frames || bytes.size() > kMaxFrameBytes) {
+    ++stats_.dropped_frames;
+    return;
   }
+  Frame& f = queue.frames.emplace_back();
+  std::memcpy(f.bytes.data(), bytes.data(), bytes.size());
+  f.size = bytes.size();
+  f.except = except;
+}
+
+void ClientPort::forget_silent_clients() {
+  const auto now = std::chrono::steady_clock::now();
+  for (std::size_t i = clients_.size(); i-- > 0;) {
+    const Client& c = clients_[i];
+    if (c.fixed || now - c.last_heard <= kClientTimeout) continue;
+    for (Queue* q : {&own_, &forwarded_})
+      if (q->next_client > i) --q->next_client;  // the front frame's progress keeps pointing at the same client
+    clients_.erase(clients_.begin() + static_cast<std::ptrdiff_t>(i));
+  }
+}
+
+void ClientPort::send_from(Queue& queue, std::size_t& budget) {
+  while (!queue.frames.empty() && budget > 0) {
+    const Frame& f = queue.frames.front();
+    while (queue.next_client < clients_.size() && budget > 0) {
+      const Client& c = clients_[queue.next_client++];
+      if (f.except && c.address == *f.except) continue;
+      --budget;
+      if (endpoint_->send_to(c.address, {f.bytes.data(), f.size})) ++stats_.datagrams_out;
+      else ++stats_.send_errors;
+    }
+    if (queue.next_client < clients_.size()) return;  // budget spent mid-frame: carry on next time
+    queue.frames.pop_front();
+    queue.next_client = 0;
+  }
+}
+
+void ClientPort::pump() {
+  if (!endpoint_) return;
+  forget_silent_clients();
+  std::size_t budget = limits_.max_datagrams_out;
+  send_from(own_, budget);
+  send_from(forwarded_, budget);
 }
 
 std::vector<SocketAddress> ClientPort::clients() const {

@@ -2,10 +2,23 @@
 // (127.0.0.1:14600 by default): it learns each client from the datagrams it sends, forgets one
 // after a silence, and sends board traffic to every client it knows plus any fixed peers (a GCS).
 // Frames are never echoed to the client that sent them.
+//
+// Bounded, so that the loop that owns it (the session's 4 ms step) never does work that grows with
+// the number of clients or with what they send:
+// - at most `max_clients` clients at a time; datagrams from further senders are read and dropped
+//   (counted in `refused_datagrams`) until one of the known clients goes silent;
+// - receive_some() reads at most the number of datagrams it is given;
+// - broadcast() only queues the frame; pump() sends at most `max_datagrams_out` datagrams per call,
+//   frames from the board and the owner's own first, then client-to-client ones; each of the two
+//   queues holds at most `max_queued_frames` frames, and a frame that finds its queue full is
+//   dropped and counted (`dropped_frames`).
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstdint>
+#include <deque>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -16,28 +29,44 @@
 
 namespace hitl::net {
 
+struct ClientPortLimits {
+  std::size_t max_clients = 64;
+  std::size_t max_datagrams_out = 256;  ///< per pump()
+  std::size_t max_queued_frames = 512;  ///< per queue (board/own, client-to-client)
+};
+
 struct ClientPortStats {
   uint64_t datagrams_in = 0;
   uint64_t datagrams_out = 0;
   uint64_t send_errors = 0;
+  uint64_t refused_datagrams = 0;  ///< from senders beyond max_clients: dropped
+  uint64_t dropped_frames = 0;     ///< frames that found their send queue full
 };
 
 class ClientPort {
  public:
   static constexpr std::chrono::seconds kClientTimeout{10};
+  static constexpr std::size_t kMaxFrameBytes = 280;  ///< one MAVLink 2 frame, signed
 
   /// Binds bind_address:port (port 0: no listening socket, only the fixed peers).
   static Expected<ClientPort> open(const std::string& bind_address, uint16_t port,
-                                   const std::vector<SocketAddress>& fixed_peers);
+                                   const std::vector<SocketAddress>& fixed_peers,
+                                   const ClientPortLimits& limits = {});
 
-  /// The next datagram from a client (learning it), or nullopt when none waits.
-  std::optional<Datagram> receive();
-  /// Sends to every live client and fixed peer except `except`.
+  /// Reads at most `max_datagrams` waiting datagrams; calls `on_datagram` for each from a client
+  /// (learning it). Returns how many were read, refused ones included.
+  std::size_t receive_some(std::size_t max_datagrams, const std::function<void(const Datagram&)>& on_datagram);
+  /// Queues one frame for every live client and fixed peer except `except` (a client's own frame
+  /// going to the others when set); pump() sends it.
   void broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except = std::nullopt);
+  /// Forgets silent clients and sends at most limits.max_datagrams_out queued datagrams.
+  void pump();
 
   std::size_t client_count() const { return clients_.size(); }
+  std::size_t queued_frames() const { return own_.frames.size() + forwarded_.frames.size(); }
   std::vector<SocketAddress> clients() const;
   const ClientPortStats& stats() const { return stats_; }
+  const ClientPortLimits& limits() const { return limits_; }
   int fd() const { return endpoint_ ? endpoint_->fd() : -1; }
   std::optional<SocketAddress> local_address() const;
 
@@ -47,8 +76,25 @@ class ClientPort {
     std::chrono::steady_clock::time_point last_heard;
     bool fixed;
   };
+  struct Frame {
+    std::array<uint8_t, kMaxFrameBytes> bytes;
+    std::size_t size = 0;
+    std::optional<SocketAddress> except;
+  };
+  /// Frames waiting, and how many clients the front one has been offered to.
+  struct Queue {
+    std::deque<Frame> frames;
+    std::size_t next_client = 0;
+  };
+  void forget_silent_clients();
+  /// Sends from `queue` until it is empty or `budget` runs out.
+  void send_from(Queue& queue, std::size_t& budget);
+
   std::optional<UdpEndpoint> endpoint_;
+  ClientPortLimits limits_;
   std::vector<Client> clients_;
+  Queue own_;        ///< from the board and the owner itself
+  Queue forwarded_;  ///< from one client to the others
   ClientPortStats stats_;
 };
 

@@ -40,7 +40,8 @@ std::size_t Router::route(const mavlink::Frame& frame, LinkId from, double now_s
   Link& source = links_.at(from);
   source.counters.frames_in += 1;
   source.counters.bytes_in += frame.raw_len;
-  source.systems.insert({frame.sysid, frame.compid});
+  if (source.systems.size() < kMaxSystemsPerLink) source.systems.insert({frame.sysid, frame.compid});
+  else if (!source.systems.count({frame.sysid, frame.compid})) ++source.counters.systems_not_learned;
   if (dedup_.seen_recently(frame.bytes(), now_s)) {
     ++source.counters.duplicates_in;
     ++duplicates_;

@@ -35,6 +35,7 @@ struct LinkCounters {
   uint64_t frames_out = 0;
   uint64_t bytes_out = 0;
   uint64_t duplicates_in = 0;  ///< frames that arrived here and had already come another way
+  uint64_t systems_not_learned = 0;  ///< frames from a new (sysid, compid) after kMaxSystemsPerLink
 };
 
 /// (target_system, target_component) of a frame; {0, 0} = broadcast (also for messages without
@@ -43,6 +44,10 @@ std::pair<uint8_t, uint8_t> target_of(const mavlink::Frame& frame);
 
 class Router {
  public:
+  /// A link learns at most this many (sysid, compid): a sender inventing ids cannot make every
+  /// targeted frame's lookup grow (a real link shows a handful).
+  static constexpr std::size_t kMaxSystemsPerLink = 256;
+
   explicit Router(double dedup_window_s = 0.0) : dedup_(dedup_window_s) {}
 
   LinkId add_link(std::string name, Sender send, bool hub = false);

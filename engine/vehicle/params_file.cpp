@@ -22,6 +22,29 @@ std::string ParamValue::to_string() const {
   return buf;
 }
 
+Expected<ParamValue> parse_param_value(std::string_view text, ParamType type) {
+  const std::string value(text);
+  try {
+    std::size_t used = 0;
+    ParamValue out;
+    if (type == ParamType::Int32) {
+      const long long v = std::stoll(value, &used);
+      if (v < INT32_MIN || v > INT32_MAX) throw std::out_of_range("int32");
+      out = ParamValue::int32(static_cast<int32_t>(v));
+    } else {
+      const float v = std::stof(value, &used);
+      if (!std::isfinite(v)) throw std::out_of_range("finite");
+      out = ParamValue::real32(v);
+    }
+    if (used != value.size()) throw std::invalid_argument("trailing");
+    return out;
+  } catch (const std::exception&) {
+    return Error{"value '" + value + "' is not a valid " +
+                 (type == ParamType::Int32 ? "INT32 (an integer from -2147483648 to 2147483647)"
+                                           : "REAL32 (a finite number within +-3.4e38)")};
+  }
+}
+
 Expected<std::vector<Param>> parse_params(std::string_view text, std::string_view source) {
   std::vector<Param> out;
   std::istringstream in{std::string(text)};
@@ -38,23 +61,10 @@ Expected<std::vector<Param>> parse_params(std::string_view text, std::string_vie
       return Error{where + "expected 'Vehicle-Id Component-Id Name Value Type', got '" + line + "'"};
     if (name.size() > 16) return Error{where + "parameter name '" + name + "' is longer than 16 characters"};
     Param p{name, {}};
-    try {
-      std::size_t used = 0;
-      if (type == "6") {
-        const long long v = std::stoll(value, &used);
-        if (v < INT32_MIN || v > INT32_MAX) throw std::out_of_range("int32");
-        p.value = ParamValue::int32(static_cast<int32_t>(v));
-      } else if (type == "9") {
-        const float v = std::stof(value, &used);
-        if (!std::isfinite(v)) throw std::out_of_range("finite");
-        p.value = ParamValue::real32(v);
-      } else {
-        return Error{where + name + ": type '" + type + "' is not 6 (INT32) or 9 (REAL32)"};
-      }
-      if (used != value.size()) throw std::invalid_argument("trailing");
-    } catch (const std::exception&) {
-      return Error{where + name + ": value '" + value + "' is not a valid " + (type == "6" ? "INT32" : "REAL32")};
-    }
+    if (type != "6" && type != "9") return Error{where + name + ": type '" + type + "' is not 6 (INT32) or 9 (REAL32)"};
+    auto v = parse_param_value(value, type == "6" ? ParamType::Int32 : ParamType::Real32);
+    if (!v) return Error{where + name + ": " + v.error().message};
+    p.value = *v;
     out.push_back(std::move(p));
   }
   return out;

@@ -35,6 +35,10 @@ struct Param {
   ParamValue value;
 };
 
+/// One value as text ("1", "0.5") for a parameter of `type`: an INT32 within its range (never
+/// wrapped), a REAL32 finite. `params load` and `params set` both check with it.
+Expected<ParamValue> parse_param_value(std::string_view text, ParamType type);
+
 /// Parses .params text; `source` names the input in errors ("hitl-defaults.params:12: ...").
 Expected<std::vector<Param>> parse_params(std::string_view text, std::string_view source);
 Expected<std::vector<Param>> load_params_file(const std::string& path);

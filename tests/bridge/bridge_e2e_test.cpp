@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <csignal>
+#include <cstring>
 #include <thread>
 
 #include "engine/mavlink/messages.h"
@@ -79,6 +80,66 @@ TEST(BridgeE2E, RoutesCommandsAndEndpointsReportsHealthAndSurvivesTheBoardGoingA
   auto again = test::run_hitl({"shell", "--session-port", std::to_string(clients), "-c", "qshell dsp_hitl status"});
   EXPECT_EQ(again.exit_code, 0) << again.err;
 
+  bridge.signal(SIGINT);
+  EXPECT_EQ(bridge.wait(10s), 0);
+  board->signal(SIGINT);
+  board->wait(10s);
+}
+
+TEST(BridgeE2E, ForwardsNothingFromAnAddressThatIsNotTheBoard) {
+  // Issue 19: 39 of 40 spoofed STATUSTEXT with the board's sysid from a foreign port reached a
+  // client as the board's; a garbage flood counted as board input and grew the loss table.
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), local = test::free_udp_port(),
+                 clients = test::free_udp_port();
+  auto board = std::make_unique<test::Process>(board_args(hil, gcs));
+  ASSERT_TRUE(board->wait_for_stderr("EMULATED", 10s)) << board->err();
+  const uint16_t qgc = test::free_udp_port();
+  test::MavlinkPeer ground_station(qgc, 0, 255, 190);
+  test::Process bridge({test::hitl_binary(), "--json", "bridge", "-i", "127.0.0.1", "--port", std::to_string(gcs), "--local-port",
+                        std::to_string(local), "--clients", std::to_string(clients), "--endpoint",
+                        "udp:127.0.0.1:" + std::to_string(qgc), "--duration", "60"});
+  ASSERT_TRUE(bridge.wait_for_stderr("clients on", 10s)) << bridge.err();
+  test::MavlinkPeer client(0, clients, 255, 190);
+  client.send(mavlink::msg::Heartbeat{});  // now a client of the bridge
+  ASSERT_TRUE(health_line(bridge, [](const nlohmann::json& j) { return j["board"] == "up" && !j["rtt_ms"].is_null(); }, 10s));
+
+  test::MavlinkPeer intruder(0, local, 1, 1);  // the board's sysid/compid, another port
+  mavlink::msg::Statustext spoof{};
+  const std::string words = "SPOOFED";
+  std::copy(words.begin(), words.end(), spoof.text.begin());
+  for (int i = 0; i < 40; ++i) intruder.send(spoof);
+  std::vector<uint8_t> junk(200);
+  uint32_t x = 7;
+  for (int i = 0; i < 3000; ++i) {
+    for (auto& b : junk) b = static_cast<uint8_t>((x = x * 1664525u + 1013904223u) >> 24);
+    junk[0] = 0xFE;  // MAVLink 1 start: unknown ids pass unchecked, each with another sysid/compid
+    intruder.send_bytes(junk);
+    if (i % 500 == 0) std::this_thread::sleep_for(5ms);
+  }
+  // The udp: endpoint's socket hears its peer only: the bridge's port towards "QGroundControl",
+  // written to by a stranger.
+  std::optional<net::SocketAddress> endpoint_port;
+  for (int i = 0; i < 50 && !endpoint_port; ++i)
+    if (ground_station.endpoint().wait_readable(100))
+      if (auto d = ground_station.endpoint().receive()) endpoint_port = d->from;
+  ASSERT_TRUE(endpoint_port);
+  test::MavlinkPeer stranger(0, endpoint_port->port(), 255, 190);
+  for (int i = 0; i < 10; ++i) stranger.send(mavlink::msg::Heartbeat{});
+  bool spoofed = false;
+  for (const auto& f : client.receive_for(2s)) {
+    if (f.is<mavlink::msg::Statustext>()) {
+      const auto t = f.as<mavlink::msg::Statustext>();
+      spoofed = spoofed || std::string(t.text.data(), strnlen(t.text.data(), t.text.size())) == words;
+    }
+  }
+  EXPECT_FALSE(spoofed);
+  auto h = health_line(bridge, [](const nlohmann::json& j) { return j["ignored_other_address"].get<uint64_t>() >= 3050; }, 10s);
+  ASSERT_TRUE(h) << bridge.out_lines().back();
+  EXPECT_LE((*h)["loss"].size(), 2u) << h->dump();  // the board's own sources only
+  // The round trip is back to what it was once the flood is over.
+  EXPECT_TRUE(health_line(
+      bridge, [](const nlohmann::json& j) { return !j["rtt_ms"].is_null() && j["rtt_ms"].get<double>() < 50.0 && j["uptime_s"].get<double>() > 0; },
+      10s));
   bridge.signal(SIGINT);
   EXPECT_EQ(bridge.wait(10s), 0);
   board->signal(SIGINT);

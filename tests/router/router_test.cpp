@@ -108,6 +108,18 @@ TEST_F(RouterTest, HubLinksReachTheirOtherPeersButNotTheSender) {
   EXPECT_EQ(clients.excepts[0], *peer);
 }
 
+TEST_F(RouterTest, ALinkLearnsABoundedNumberOfSystems) {
+  // Issue 19: a client inventing sysid/compid pairs must not make every lookup grow.
+  Router r;
+  Sink a, b;
+  const auto la = r.add_link("a", a.sender());
+  r.add_link("b", b.sender());
+  for (int i = 0; i < 600; ++i) r.route(frame(msg::Heartbeat{}, static_cast<uint8_t>(1 + i % 250), static_cast<uint8_t>(i / 250 + 1)), la, 0.0);
+  EXPECT_EQ(r.systems(la).size(), Router::kMaxSystemsPerLink);
+  EXPECT_EQ(r.counters(la).systems_not_learned, 600u - Router::kMaxSystemsPerLink);
+  EXPECT_EQ(b.frames.size(), 600u);  // still routed
+}
+
 TEST_F(RouterTest, DuplicatesWithinTheWindowAreDroppedOnceAndCounted) {
   Router r(0.5);
   Sink a, b, c;

@@ -317,6 +317,58 @@ TEST(SimE2E, BadInputExitsTwoWithAClearLine) {
   EXPECT_EQ(test::run_hitl({"sim", "--speed", "-1"}).exit_code, 2);
 }
 
+TEST(SimE2E, RecordWriteErrorIsSaidAtOnceAndExitsOne) {
+  // Issue 19: `sim --record /dev/full` exited 0 with nothing written.
+  Board board;
+  board.serve([](const msg::HilSensor&, uint64_t) { return std::nullopt; });
+  Process sim(board.sim_args({"--duration", "60", "--no-vio", "--record", "/dev/full"}));
+  EXPECT_TRUE(sim.wait_for_stderr("writing '/dev/full' failed: No space left on device", 10s)) << sim.err();
+  sim.signal(SIGINT);
+  EXPECT_EQ(sim.wait(30s), 1) << sim.err();
+  EXPECT_EQ(last_json(sim.out())["record_error"], "writing '/dev/full' failed: No space left on device");
+}
+
+TEST(SimE2E, NumberOptionsRefuseNanInfAndAbsurdValuesPlainly) {
+  // Issue 19: --actuator-timeout nan disabled the motor-stop failsafe; --lockstep-timeout nan was taken.
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--actuator-timeout", "nan"}, "--actuator-timeout: nan is not a finite number"},
+      {{"--lockstep-timeout", "nan"}, "--lockstep-timeout: nan is not a finite number"},
+      {{"--actuator-timeout", "inf"}, "--actuator-timeout: inf is not a finite number"},
+      {{"--duration", "1e999"}, "--duration: 1e999 is not a finite number"},
+      {{"--speed", "-1"}, "--speed: -1 is below 0"},
+      {{"--truth-rate", "1e12"}, "--truth-rate: 1e12 is too large (at most 1e+09 in size)"},
+      {{"--vio-rate", "0"}, "--vio-rate: 0 is not greater than 0"},
+      {{"--seed", "-1"}, "--seed: -1 is negative; give 0 or more"},
+  };
+  for (const auto& [args, words] : cases) {
+    std::vector<std::string> a{"sim", "--clients", "0"};
+    a.insert(a.end(), args.begin(), args.end());
+    const auto r = test::run_hitl(a, 20s);
+    EXPECT_EQ(r.exit_code, 2) << args[0] << " " << args[1];
+    EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("17976931348623157"), std::string::npos) << r.err;  // no DBL_MAX in words
+  }
+}
+
+TEST(SimE2E, PhysicsStepPacesRealTimeOrIsRefusedSayingWhy) {
+  // Issue 19: physics.step_s 0.002 gave RTF 0.50 and HIL_SENSOR at 125 Hz; 0.1 gave RTF 24.9.
+  const auto dir = test::temp_dir();
+  std::ofstream(dir + "/coarse.json") << R"({"physics": {"step_s": 0.1, "max_substep_s": 0.004}})";
+  auto coarse = test::run_hitl({"sim", "--world", dir + "/coarse.json", "--clients", "0"});
+  EXPECT_EQ(coarse.exit_code, 2);
+  EXPECT_NE(coarse.err.find("physics.step_s 0.1 does not divide the IMU period 0.004 s (250 Hz)"), std::string::npos)
+      << coarse.err;
+  std::ofstream(dir + "/fine.json") << R"({"physics": {"step_s": 0.002, "max_substep_s": 0.002}})";
+  Board board;
+  board.serve([](const msg::HilSensor&, uint64_t) { return std::nullopt; });
+  Process sim(board.sim_args({"--duration", "2", "--no-vio", "--world", dir + "/fine.json"}));
+  EXPECT_EQ(sim.wait(60s), 0) << sim.err();
+  const auto j = last_json(sim.out());
+  EXPECT_NEAR(j["sent"]["HIL_SENSOR"]["count"].get<int>(), 500, 1);  // 250 Hz of simulated time
+  EXPECT_NEAR(j["real_time_factor"].get<double>(), 1.0, 0.1);  // paced by the 2 ms step: was 0.50
+  EXPECT_GE(j["wall_time_s"].get<double>(), 1.8);
+}
+
 TEST(SimE2E, RoutesClientsToTheBoardAndTelemetryBack) {
   Board board;
   const uint16_t clients_port = test::free_udp_port();

@@ -141,6 +141,24 @@ TEST_F(ParamsE2E, ExportLoadRoundTripGetAndBadValues) {
   EXPECT_EQ(nlohmann::json::parse(show.out)["params"].size(), 4u);  // ACC0, GYRO0, MAG0, BARO0
 }
 
+TEST_F(ParamsE2E, SetRefusesValuesOutOfTheParametersTypeAndLeavesTheBoardAlone) {
+  // Issue 19: 99999999999 wrapped to 1215752191, 4294967297 to 1, exit 0.
+  for (const char* bad : {"99999999999", "4294967297", "-2147483649", "1.5", "nan"}) {
+    auto r = params({"set", "SYS_HITL", bad});
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.out;
+    EXPECT_NE(r.err.find("SYS_HITL: value '" + std::string(bad) + "' is not a valid INT32 (an integer from -2147483648 to 2147483647)"),
+              std::string::npos) << r.err;
+  }
+  for (const char* bad : {"1e39", "inf", "nan"}) {
+    auto r = params({"set", "MPC_XY_P", bad});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("is not a valid REAL32"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(params({"get", "SYS_HITL"}).out, "1\n");
+  EXPECT_EQ(params({"set", "SYS_HITL", "2147483647"}).exit_code, 0);  // the edge is a value
+  EXPECT_EQ(params({"set", "SYS_HITL", "1"}).exit_code, 0);
+}
+
 TEST_F(ParamsE2E, WorksThroughARunningSimSession) {
   const uint16_t clients = test::free_udp_port();
   test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil_), "--local-port",

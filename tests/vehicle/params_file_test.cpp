@@ -53,6 +53,20 @@ TEST(ParamsFile, RoundTripAndErrorsNameTheLine) {
   EXPECT_FALSE(load_params_file("/nonexistent.params").ok());
 }
 
+TEST(ParamsFile, OneValueCheckForLoadAndSet) {
+  EXPECT_EQ(parse_param_value("2147483647", ParamType::Int32).value(), ParamValue::int32(2147483647));
+  EXPECT_EQ(parse_param_value("-2147483648", ParamType::Int32).value(), ParamValue::int32(INT32_MIN));
+  for (const char* bad : {"2147483648", "99999999999", "4294967297", "1.5", "", "1 ", "nan"})
+    EXPECT_FALSE(parse_param_value(bad, ParamType::Int32).ok()) << bad;
+  EXPECT_EQ(parse_param_value("0.5", ParamType::Real32).value(), ParamValue::real32(0.5f));
+  for (const char* bad : {"nan", "inf", "1e39", "-1e39", "x"}) EXPECT_FALSE(parse_param_value(bad, ParamType::Real32).ok()) << bad;
+  // The file names the line and the parameter before the same words.
+  auto wrapped = parse_params("1 1 SYS_HITL 4294967297 6\n", "x.params");
+  ASSERT_FALSE(wrapped.ok());
+  EXPECT_EQ(wrapped.error().message,
+            "x.params:1: SYS_HITL: value '4294967297' is not a valid INT32 (an integer from -2147483648 to 2147483647)");
+}
+
 TEST(ParamsFile, Int32TravelsBytewiseInTheFloatField) {
   const auto v = ParamValue::int32(1310988);
   const float wire = encode_param_float(v);
