@@ -14,7 +14,7 @@ case "$n" in ''|*[!0-9]*) echo "lockstep-squares: N must be a positive integer (
 
 hil=24560; gcs=24558; local_port=24561
 log="$(mktemp -d)"
-"$hitl" target --bind 127.0.0.1 --hil-port "$hil" --gcs-port "$gcs" --vio-port 0 --lockstep 2>"$log/target.err" &
+"$hitl" target --bind 127.0.0.1 --hil-port "$hil" --gcs-port "$gcs" --vio-port 0 --lockstep >"$log/target.out" 2>"$log/target.err" &
 target=$!
 trap 'kill -INT "$target" 2>/dev/null; wait "$target" 2>/dev/null' EXIT
 sleep 1

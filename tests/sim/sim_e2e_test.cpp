@@ -390,6 +390,24 @@ TEST(SimE2E, LockstepAgainstADeadBoardEndsOnTimeThenGivesUp) {
   EXPECT_LT(j["sim_time_s"].get<double>(), 30.0);
 }
 
+TEST(SimE2E, ImuSamplesBeyondFullScaleAreClippedCountedAndSaid) {
+  // An IMU whose accel range (0.5 g) is below gravity: every sample at rest clips on z.
+  const auto dir = test::temp_dir();
+  std::ofstream(dir + "/small_imu.json") << R"({"sensors": {"imu": {"accel_range_m_s2": 4.9}}})";
+  Board board;
+  board.serve([](const msg::HilSensor&, uint64_t) { return std::nullopt; });
+  Process sim(board.sim_args({"--duration", "1", "--speed", "0", "--no-vio", "--vehicle", dir + "/small_imu.json"}));
+  EXPECT_EQ(sim.wait(60s), 0) << sim.err();
+  board.stop();
+  for (const auto& f : board.frames())
+    if (f.is<msg::HilSensor>()) EXPECT_LE(std::abs(f.as<msg::HilSensor>().zacc), 4.9f);
+  const auto j = last_json(sim.out());
+  EXPECT_EQ(j["imu_saturated"]["accel"], 250);
+  EXPECT_EQ(j["imu_saturated"]["gyro"], 0);
+  EXPECT_NE(sim.err().find("IMU at full scale"), std::string::npos) << sim.err();
+  EXPECT_EQ(j["landing"]["touchdowns"], 0);
+}
+
 TEST(SimE2E, WarnsOnceWhenTheBoardNeverAnswers) {
   Board board;
   board.serve([](const msg::HilSensor&, uint64_t) { return std::nullopt; });
