@@ -274,20 +274,31 @@ struct Session::Impl {
     return true;
   }
 
-  /// Lockstep against a flight stack whose answers carry a clock far ahead of this session: it
-  /// kept its clock from an earlier session. Said once, with what to restart.
+  /// Lockstep against a flight stack whose answers are not echoes of this session's HIL_SENSORs,
+  /// said once. PX4 SITL stamped more than 1 s ahead still runs on an earlier session's clock and
+  /// cannot go back in time: restart it. A board on its own clock (PX4 in HIL mode stamps on
+  /// arrival) is fine: every answer counts, only late ones cannot be told apart.
   void check_clock_ahead(Observer& observer) {
     if (warned_clock_ahead || !lockstep() || !actuators.ever_received()) return;
-    if (actuators.last_echo_offset_us() < static_cast<int64_t>(ActuatorInput::kEchoWindow_us)) return;
-    warned_clock_ahead = true;
+    const int64_t offset_us = actuators.last_echo_offset_us();
     char text[512];
-    std::snprintf(text, sizeof text,
-                  "lockstep: the flight stack's answers are stamped %.1f s ahead of this session's clock: it still "
-                  "runs on an earlier session's time. hitl target --lockstep re-anchors on a new session by itself; "
-                  "PX4 in lockstep cannot go back in time and will not take these sensors: restart PX4 (on a board: "
-                  "voxl-px4-hitl start; SITL: restart it with hitl sim)",
-                  static_cast<double>(actuators.last_echo_offset_us()) * 1e-6);
-    observer.on_event({Severity::Warning, text});
+    if (sitl() && offset_us >= static_cast<int64_t>(ActuatorInput::kEchoWindow_us)) {
+      std::snprintf(text, sizeof text,
+                    "lockstep: PX4 SITL's answers are stamped %.1f s ahead of this session's clock: it still runs on "
+                    "an earlier session's time and cannot go back, so it will not take these sensors as new. Restart "
+                    "PX4 SITL together with hitl sim",
+                    static_cast<double>(offset_us) * 1e-6);
+      observer.on_event({Severity::Warning, text});
+    } else if (!sitl() && actuators.counters().foreign_clock >= 10) {
+      std::snprintf(text, sizeof text,
+                    "lockstep: the board stamps its answers with its own clock, not the HIL_SENSOR's time_usec (a "
+                    "PX4 board in HIL mode does; hitl target --lockstep echoes it): each answer counts, late ones "
+                    "cannot be told apart");
+      observer.on_event({Severity::Info, text});
+    } else {
+      return;
+    }
+    warned_clock_ahead = true;
   }
 
   /// Takes the operator's pause and reset requests; true while paused (the step does nothing).

@@ -518,5 +518,42 @@ TEST(SimE2E, Px4SitlOverTcpLockstepOnTheSimulatorsClock) {
   EXPECT_EQ(j["lockstep"]["fallbacks"], 0);
 }
 
+/// PX4 SITL still on an earlier session's clock: its answers are stamped far ahead; the session
+/// says so once, and what to restart.
+TEST(SimE2E, Px4SitlOnAnEarlierSessionsClockIsSaid) {
+  const uint16_t port = test::free_udp_port();
+  Process sim({test::hitl_binary(), "--json", "sim", "--px4-sitl", "tcp:" + std::to_string(port), "--no-vio", "--clients", "0",
+               "--speed", "0", "--bind", "127.0.0.1"});
+  ASSERT_TRUE(sim.wait_for_stderr("waiting for PX4 SITL", 10s)) << sim.err();
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(port);
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  auto set = mavlink::MessageSet::compiled();
+  mavlink::FrameParser parser(set);
+  mavlink::FrameEncoder px4(1, 1);
+  uint64_t sensors = 0;
+  uint8_t buf[4096];
+  while (sensors < 300) {
+    const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+    ASSERT_GT(n, 0);
+    parser.feed({buf, static_cast<std::size_t>(n)}, [&](const mavlink::Frame& f) {
+      if (!f.is<msg::HilSensor>()) return;
+      ++sensors;
+      auto a = actuators(0.0, false);
+      a.time_usec = f.as<msg::HilSensor>().time_usec + 600000000;  // 10 minutes into an earlier session
+      mavlink::FrameBuffer out;
+      const std::size_t len = px4.encode(a, out);
+      ASSERT_EQ(::send(fd, out.data(), len, MSG_NOSIGNAL), static_cast<ssize_t>(len));
+    });
+  }
+  ::close(fd);
+  EXPECT_EQ(sim.wait(30s), 1);
+  EXPECT_NE(sim.err().find("still runs on an earlier session's time"), std::string::npos) << sim.err();
+  EXPECT_NE(sim.err().find("Restart PX4 SITL together with hitl sim"), std::string::npos) << sim.err();
+}
+
 }  // namespace
 }  // namespace hitl
