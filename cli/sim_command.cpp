@@ -71,7 +71,15 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
   j["actuator_timeouts"] = s.actuator_timeouts;
   j["actuator_flags"] = s.actuator_flags;
   j["actuator_mode"] = s.actuator_mode;
-  j["lockstep"] = {{"waits", s.lockstep_waits}, {"fallbacks", s.lockstep_fallbacks}};
+  j["lockstep"] = {{"waits", s.lockstep_waits},
+                   {"fallbacks", s.lockstep_fallbacks},
+                   {"late_answers", s.lockstep_late_answers},
+                   {"foreign_clock", s.lockstep_foreign_clock}};
+  j["imu_saturated"] = {{"accel", s.imu_accel_saturated}, {"gyro", s.imu_gyro_saturated}};
+  j["landing"] = {{"touchdowns", s.touchdowns},
+                  {"max_rebound_m", s.max_rebound_m},
+                  {"max_touchdown_speed_m_s", s.max_touchdown_speed_m_s},
+                  {"peak_accel_m_s2", s.peak_touchdown_accel_m_s2}};
   j["crc_errors"] = s.crc_errors;
   j["parse_errors"] = s.parse_errors;
   j["clients"] = s.clients;
@@ -109,7 +117,12 @@ std::string status_line(const hil::SessionSnapshot& s) {
                 s.sim_time_s, s.recent_real_time_factor, rate(s.sent, "HIL_SENSOR"), rate(s.sent, "HIL_GPS"),
                 rate(s.sent, "ODOMETRY"), rate(s.received, "HIL_ACTUATOR_CONTROLS"), s.armed ? "ARMED   " : "disarmed",
                 s.altitude_m, static_cast<unsigned long long>(s.late_ticks));
-  return buf;
+  std::string line = buf;
+  if (s.imu_accel_saturated + s.imu_gyro_saturated > 0) {
+    std::snprintf(buf, sizeof buf, "  IMU SAT %llu", static_cast<unsigned long long>(s.imu_accel_saturated + s.imu_gyro_saturated));
+    line += buf;
+  }
+  return line;
 }
 
 class SimPrinter : public hil::Session::Observer {
@@ -164,6 +177,11 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
               static_cast<unsigned long long>(s.lockstep_fallbacks));
   std::printf("final position NED (%.2f, %.2f, %.2f) m, %s\n", s.p_NED_m[0], s.p_NED_m[1], s.p_NED_m[2],
               s.armed ? "armed" : "disarmed");
+  std::printf("touchdowns %llu (fastest %.2f m/s, peak %.1f g, max rebound %.3f m)  IMU saturated: accel %llu, gyro %llu"
+              "  lockstep late answers %llu\n",
+              static_cast<unsigned long long>(s.touchdowns), s.max_touchdown_speed_m_s, s.peak_touchdown_accel_m_s2 / 9.80665,
+              s.max_rebound_m, static_cast<unsigned long long>(s.imu_accel_saturated),
+              static_cast<unsigned long long>(s.imu_gyro_saturated), static_cast<unsigned long long>(s.lockstep_late_answers));
   if (!s.trajectory_state.empty())
     std::printf("trajectory: %s%s, tracking error against truth RMS %.2f m, max %.2f m (%llu samples)\n",
                 s.trajectory_state.c_str(), s.trajectory_failure.empty() ? "" : (": " + s.trajectory_failure).c_str(),

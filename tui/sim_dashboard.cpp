@@ -156,6 +156,8 @@ DashboardModel SimDashboard::collect() {
       {"routed", count(s.routed_to_board) + "/" + count(s.routed_to_clients)},
       {"act timeout", count(s.actuator_timeouts), flag(s.actuator_timeouts)},
       {"resets", count(s.resets)},
+      {"imu sat", count(s.imu_accel_saturated + s.imu_gyro_saturated), flag(s.imu_accel_saturated + s.imu_gyro_saturated)},
+      {"touchdowns", count(s.touchdowns)},
   };
   return m;
 }

@@ -13,6 +13,19 @@ bool ActuatorInput::on_message(const mavlink::msg::HilActuatorControls& message,
   }
   sysid_ = sysid;
   ++counters_.received;
+  ++heard_;
+  heard_s_ = now_s;
+  if (expected_us_) {
+    const uint64_t t = message.time_usec, expected = *expected_us_;
+    echo_offset_us_ = static_cast<int64_t>(t - expected);
+    if (t < expected && expected - t <= kEchoWindow_us && t >= *first_expected_us_) {
+      ++counters_.late;  // answers an earlier HIL_SENSOR: already stepped on without it
+      last_s_ = now_s;   // the flight stack is alive: no motor timeout
+      in_timeout_ = false;
+      return false;
+    }
+    if (t < expected || t >= expected + kStep_us) ++counters_.foreign_clock;
+  }
   ++fresh_;
   bool clamped = false;
   for (std::size_t i = 0; i < last_.u.size(); ++i) {

@@ -23,6 +23,7 @@
 #include "engine/mavlink/tlog.h"
 #include "engine/mavlink/wire_units.h"
 #include "engine/model/multicopter.h"
+#include "engine/model/touchdown_monitor.h"
 #include "engine/net/client_port.h"
 #include "engine/router/router.h"
 #include "engine/net/tcp_server.h"
@@ -78,6 +79,11 @@ struct Session::Impl {
   Eigen::Vector3d pilot_origin_ENU_m = Eigen::Vector3d::Zero();
 
   ActuatorInput actuators{0.5};
+  model::TouchdownMonitor touchdowns;
+  bool lockstep_stalled = false;  ///< a wait ran out: step on without waiting until the board is heard again
+  bool warned_imu_saturated = false;
+  bool warned_clock_ahead = false;
+  bool lockstep_gave_up = false;
   std::optional<Pacer> pacer;
   std::optional<DataPaths> paths;
 
@@ -264,6 +270,12 @@ struct Session::Impl {
   // --- the step ------------------------------------------------------------------------------
   void lockstep_wait(Observer& observer) {
     if (!lockstep() || !actuators.ever_received()) return;  // PX4 sends nothing during its first ~1.1 s
+    if (lockstep_stalled) {
+      // After a wait ran out, step on at the pace (bounded wall time) until the board is heard again.
+      if (actuators.take_heard() == 0) return;
+      lockstep_stalled = false;
+      observer.on_event({Severity::Info, "lockstep: the flight stack answers again; waiting for each answer again"});
+    }
     ++lockstep_waits;
     const double deadline = monotonic_s() + config.lockstep_timeout_s;
     while (actuators.take_new() == 0 && !stack_gone) {
@@ -271,16 +283,63 @@ struct Session::Impl {
       if (left_s <= 0 || !wait_stack_readable(static_cast<int>(std::ceil(left_s * 1000)))) {
         if (monotonic_s() < deadline) continue;
         ++lockstep_fallbacks;
+        lockstep_stalled = true;
+        actuators.take_heard();
         if (!warned_lockstep) {
           warned_lockstep = true;
           observer.on_event({Severity::Warning, "lockstep: no HIL_ACTUATOR_CONTROLS within " +
                                                     std::to_string(static_cast<int>(config.lockstep_timeout_s * 1000)) +
-                                                    " ms of the last HIL_SENSOR; stepping on without it (counted)"});
+                                                    " ms of the last HIL_SENSOR; stepping on without waiting until it "
+                                                    "answers again (counted)"});
         }
         return;
       }
       drain(monotonic_s());
     }
+  }
+
+  /// Lockstep against a flight stack that stopped answering: after kLockstepGiveUp_s of silence the
+  /// session ends (exit 1) saying what to restart, rather than running on without it.
+  bool lockstep_dead(Observer& observer) {
+    if (!lockstep() || sitl_tcp || !actuators.last_heard_s()) return false;
+    const double silent_s = unpaused_s(monotonic_s()) - *actuators.last_heard_s();
+    if (silent_s < kLockstepGiveUp_s) return false;
+    lockstep_gave_up = true;
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "lockstep: no HIL_ACTUATOR_CONTROLS from %s for %.0f s; ending the session. The flight stack "
+                  "stopped answering: restart it, then hitl sim (hitl target --lockstep: restart it or check it is "
+                  "still running; a PX4 board: restart PX4 on it, voxl-px4-hitl start)",
+                  target ? target->to_string().c_str() : "the flight stack", silent_s);
+    observer.on_event({Severity::Error, text});
+    return true;
+  }
+
+  /// Lockstep against a flight stack whose answers are not echoes of this session's HIL_SENSORs,
+  /// said once. PX4 SITL stamped more than 1 s ahead still runs on an earlier session's clock and
+  /// cannot go back in time: restart it. A board on its own clock (PX4 in HIL mode stamps on
+  /// arrival) is fine: every answer counts, only late ones cannot be told apart.
+  void check_clock_ahead(Observer& observer) {
+    if (warned_clock_ahead || !lockstep() || !actuators.ever_received()) return;
+    const int64_t offset_us = actuators.last_echo_offset_us();
+    char text[512];
+    if (sitl() && offset_us >= static_cast<int64_t>(ActuatorInput::kEchoWindow_us)) {
+      std::snprintf(text, sizeof text,
+                    "lockstep: PX4 SITL's answers are stamped %.1f s ahead of this session's clock: it still runs on "
+                    "an earlier session's time and cannot go back, so it will not take these sensors as new. Restart "
+                    "PX4 SITL together with hitl sim",
+                    static_cast<double>(offset_us) * 1e-6);
+      observer.on_event({Severity::Warning, text});
+    } else if (!sitl() && actuators.counters().foreign_clock >= 10) {
+      std::snprintf(text, sizeof text,
+                    "lockstep: the board stamps its answers with its own clock, not the HIL_SENSOR's time_usec (a "
+                    "PX4 board in HIL mode does; hitl target --lockstep echoes it): each answer counts, late ones "
+                    "cannot be told apart");
+      observer.on_event({Severity::Info, text});
+    } else {
+      return;
+    }
+    warned_clock_ahead = true;
   }
 
   /// Takes the operator's pause and reset requests; true while paused (the step does nothing).
@@ -303,6 +362,7 @@ struct Session::Impl {
       time_offset_s += model->state().time_s;  // the wire's clock carries on
       model->reset();
       sensors->reset();
+      touchdowns.on_reset();
       ++resets;
       char text[96];
       std::snprintf(text, sizeof text, "reset to home at rest, motors stopped (time carries on at %.1f s)", sim_time_s());
@@ -394,12 +454,18 @@ struct Session::Impl {
     model->set_motor_commands(actuators.commands(unpaused_s(monotonic_s())));
     if (auto st = model->step(); !st) return st;
     const auto& state = model->state();
+    touchdowns.observe(state);
     const auto frame = sensors->sample_due(state);
+    if (!warned_imu_saturated && (sensors->imu().saturation().accel > 0 || sensors->imu().saturation().gyro > 0)) {
+      warned_imu_saturated = true;
+      observer.on_event({Severity::Warning, imu_saturated_text()});
+    }
     const double sent_s = monotonic_s();
     const uint64_t t_us = mavlink::wire::s_to_us(time_offset_s + state.time_s);
     if (frame.imu || frame.mag || frame.baro) {
       send_to_stack(make_hil_sensor(frame, t_us));
       sensor_sent = true;
+      if (lockstep() && frame.imu) actuators.expect_answer_to(t_us);
       paths->on_hil_sensor(frame.imu.has_value(), frame.mag.has_value(), frame.baro.has_value(), sent_s);
       if (first_sensor_wall_s < 0) first_sensor_wall_s = monotonic_s();
     }
@@ -457,6 +523,16 @@ struct Session::Impl {
     if (out.event) observer.on_event({pilot->state() == vehicle::PilotState::Failed ? Severity::Error : Severity::Info, *out.event});
   }
 
+  std::string imu_saturated_text() const {
+    const auto& imu = config.vehicle.sensors.imu;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "IMU at full scale (accel +-%.1f g, gyro +-%.0f deg/s, sensors.imu.*_range): a sample was clipped at "
+                  "t = %.2f s, as the real sensor would; counted (imu_saturated)",
+                  imu.accel_range_m_s2 / 9.80665, imu.gyro_range_rad_s * 180.0 / M_PI, sim_time_s());
+    return text;
+  }
+
   std::string no_answer_text() const {
     if (sitl())
       return "no HIL_ACTUATOR_CONTROLS from PX4 SITL yet; still sending. Is PX4 started with a simulator "
@@ -497,6 +573,15 @@ struct Session::Impl {
     s.actuator_timeouts = actuators.counters().timeouts;
     s.lockstep_waits = lockstep_waits;
     s.lockstep_fallbacks = lockstep_fallbacks;
+    s.lockstep_late_answers = actuators.counters().late;
+    s.lockstep_foreign_clock = actuators.counters().foreign_clock;
+    s.imu_accel_saturated = sensors->imu().saturation().accel;
+    s.imu_gyro_saturated = sensors->imu().saturation().gyro;
+    const auto& td = touchdowns.stats();
+    s.touchdowns = td.touchdowns;
+    s.max_rebound_m = td.max_rebound_m;
+    s.max_touchdown_speed_m_s = td.max_touchdown_speed_m_s;
+    s.peak_touchdown_accel_m_s2 = td.peak_accel_m_s2;
     s.crc_errors = stack_parser->stats().crc_errors;
     s.parse_errors = stack_parser->stats().parse_errors;
     s.clients = clients ? clients->client_count() : 0;
@@ -703,6 +788,11 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
     }
     if (s.pilot && s.pilot->finished()) {
       reason = s.pilot->state() == vehicle::PilotState::Done ? EndReason::TrajectoryDone : EndReason::TrajectoryFailed;
+      break;
+    }
+    s.check_clock_ahead(observer);
+    if (s.lockstep_dead(observer)) {
+      reason = EndReason::FlightStackGone;
       break;
     }
     if (s.stack_gone) {

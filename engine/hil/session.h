@@ -57,6 +57,16 @@ struct SessionSnapshot {
   uint64_t actuator_timeouts = 0;
   uint64_t lockstep_waits = 0;
   uint64_t lockstep_fallbacks = 0;
+  uint64_t lockstep_late_answers = 0;   ///< answers to an earlier HIL_SENSOR (time_usec), ignored
+  uint64_t lockstep_foreign_clock = 0;  ///< answers whose time_usec echoes no HIL_SENSOR (counted as answers)
+  // the IMU's full scale (sensors.imu.*_range): samples clipped
+  uint64_t imu_accel_saturated = 0;
+  uint64_t imu_gyro_saturated = 0;
+  // touchdowns (model::TouchdownMonitor)
+  uint64_t touchdowns = 0;
+  double max_rebound_m = 0;
+  double max_touchdown_speed_m_s = 0;
+  double peak_touchdown_accel_m_s2 = 0;
   uint64_t crc_errors = 0;
   uint64_t parse_errors = 0;
   uint64_t clients = 0;

@@ -23,6 +23,9 @@ using ::hitl::kSimLocalPort;
 inline constexpr uint16_t kPx4SitlTcpPort = 4560;    ///< PX4 SITL's simulator_mavlink (instance 0)
 inline constexpr double kStepPeriod_s = 0.004;       ///< physics step and HIL_SENSOR period
 inline constexpr double kVioRate_hz = 250.0;
+/// Lockstep: a flight stack that answered once and then stays silent this long (wall time, pauses
+/// excluded) is gone; the session ends (exit 1) instead of stepping on without it.
+inline constexpr double kLockstepGiveUp_s = 10.0;
 inline constexpr uint8_t kSimulatorSystemId = 250;   ///< the simulator's own identity (not a vehicle)
 inline constexpr uint8_t kSimulatorComponentId = 1;
 /// ODOMETRY comes from its own component (MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY), with its own

@@ -259,6 +259,10 @@ void vehicle_fields(V& v, VehicleConfig& c) {
     g.vec3_array("contact_points_FLU_m", lg.contact_points_FLU_m, closed(-10.0, 10.0));
     g.number("stiffness_N_m", lg.stiffness_N_m, kPositive);
     g.number("damping_N_s_m", lg.damping_N_s_m, kNonNegative);
+    g.number("damping_depth_m", lg.damping_depth_m, closed(0.0, 1.0));
+    g.vec3_array("frame_points_FLU_m", lg.frame_points_FLU_m, closed(-10.0, 10.0));
+    g.number("frame_stiffness_N_m", lg.frame_stiffness_N_m, kPositive);
+    g.number("frame_damping_N_s_m", lg.frame_damping_N_s_m, kNonNegative);
     g.number("friction_coefficient", lg.friction_coefficient, kNonNegative);
     g.number("tangential_stiffness_N_m", lg.tangential_stiffness_N_m, kPositive);
     g.number("tangential_damping_N_s_m", lg.tangential_damping_N_s_m, kNonNegative);
@@ -268,6 +272,8 @@ void vehicle_fields(V& v, VehicleConfig& c) {
     s.object("imu", [&](auto& i) {
       i.number("rate_hz", sc.imu.rate_hz, closed(0.1, 10000.0));
       i.vec3("position_FLU_m", sc.imu.position_FLU_m, closed(-10.0, 10.0));
+      i.number("accel_range_m_s2", sc.imu.accel_range_m_s2, kPositive);
+      i.number("gyro_range_rad_s", sc.imu.gyro_range_rad_s, kPositive);
       i.object("gyro", [&](auto& n) { inertial_noise_fields(n, sc.imu.gyro); });
       i.object("accel", [&](auto& n) { inertial_noise_fields(n, sc.imu.accel); });
     });

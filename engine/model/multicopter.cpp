@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -40,8 +41,9 @@ struct Multicopter::Impl {
         forces(system),
         gravity(forces, matter, SimTK::Vec3(0, 0, -world_config.gravity_m_s2)),
         wind(world_config.wind, seed) {
-    const int substeps = static_cast<int>(std::ceil(world.physics.step_s / world.physics.max_substep_s - 1e-9));
-    inputs.substep_s = world.physics.step_s / std::max(1, substeps);
+    substeps = std::max(1, static_cast<int>(std::ceil(world.physics.step_s / world.physics.max_substep_s - 1e-9)));
+    inputs.substep_s = world.physics.step_s / substeps;
+    contacts = contact_points(vehicle.landing_gear);
 
     SimTK::Body::Rigid base_body(SimTK::MassProperties(vehicle.base.mass_kg, SimTK::Vec3(0), inertia_of(vehicle.base.inertia_kgm2)));
     SimTK::MobilizedBody::Free base(matter.Ground(), SimTK::Transform(), base_body, SimTK::Transform());
@@ -83,13 +85,20 @@ struct Multicopter::Impl {
     integrator->stepTo(s.getTime());
     failure.reset();
     step_count = 0;
-    published = extract(integrator->getState(), nullptr);
+    published = extract(integrator->getState(), nullptr, nullptr);
     update_anchors();
   }
 
+  /// Sums over one step's sub-steps: the specific force (each sub-step in its own body frame) and
+  /// the body rate, whose means the IMU reads.
+  struct StepMeans {
+    Eigen::Vector3d specific_force_FLU_m_s2 = Eigen::Vector3d::Zero();
+    Eigen::Vector3d w_FLU_rad_s = Eigen::Vector3d::Zero();
+  };
+
   /// The public state of a realized Simbody state; `previous` gives the velocities one step back
-  /// (for the accelerations), none at reset (at rest by definition).
-  VehicleState extract(const SimTK::State& s, const VehicleState* previous) const {
+  /// (for the accelerations) and `means` the step's averages; none at reset (at rest by definition).
+  VehicleState extract(const SimTK::State& s, const VehicleState* previous, const StepMeans* means) const {
     system.realize(s, SimTK::Stage::Velocity);
     const SimTK::Transform& X_ENU_FLU = base().getBodyTransform(s);
     const SimTK::Quaternion q = X_ENU_FLU.R().convertRotationToQuaternion();
@@ -106,24 +115,31 @@ struct Multicopter::Impl {
       out.alpha_FLU_rad_s2 = (out.w_FLU_rad_s - previous->w_FLU_rad_s) / dt_s;
     }
     const Eigen::Vector3d g_ENU_m_s2(0.0, 0.0, -world.gravity_m_s2);
-    out.specific_force_FLU_m_s2 = out.q_FLU_to_ENU.conjugate() * (out.a_ENU_m_s2 - g_ENU_m_s2);
+    if (means) {
+      out.specific_force_FLU_m_s2 = means->specific_force_FLU_m_s2;
+      out.w_step_mean_FLU_rad_s = means->w_FLU_rad_s;
+    } else {
+      out.specific_force_FLU_m_s2 = out.q_FLU_to_ENU.conjugate() * (out.a_ENU_m_s2 - g_ENU_m_s2);
+      out.w_step_mean_FLU_rad_s = out.w_FLU_rad_s;
+    }
     for (std::size_t i = 0; i < rotor_index.size(); ++i) {
       out.rotor_speed_rad_s[i] = std::abs(matter.getMobilizedBody(rotor_index[i]).getOneU(s, SimTK::MobilizerUIndex(0)));
     }
     out.wind_ENU_m_s = inputs.wind_ENU_m_s;
-    for (const Eigen::Vector3d& p_FLU_m : vehicle.landing_gear.contact_points_FLU_m) {
-      out.on_ground = out.on_ground || (out.p_ENU_m + out.q_FLU_to_ENU * p_FLU_m).z() < 0.0;
+    out.ground_clearance_m = std::numeric_limits<double>::infinity();
+    for (const ContactPoint& c : contacts) {
+      out.ground_clearance_m = std::min(out.ground_clearance_m, (out.p_ENU_m + out.q_FLU_to_ENU * c.p_FLU_m).z());
     }
+    out.on_ground = out.ground_clearance_m < 0.0;
     return out;
   }
 
   void update_anchors() {
     const SimTK::State& s = integrator->getState();
     const SimTK::Transform& X_ENU_FLU = base().getBodyTransform(s);
-    const auto& points = vehicle.landing_gear.contact_points_FLU_m;
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const SimTK::Vec3 p_FLU_m = to_simtk(points[k]);
-      update_contact_anchor(vehicle.landing_gear, to_eigen(X_ENU_FLU * p_FLU_m),
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      const SimTK::Vec3 p_FLU_m = to_simtk(contacts[k].p_FLU_m);
+      update_contact_anchor(vehicle.landing_gear, contacts[k], to_eigen(X_ENU_FLU * p_FLU_m),
                             to_eigen(base().findStationVelocityInGround(s, p_FLU_m)), inputs.anchors[k]);
     }
   }
@@ -154,8 +170,27 @@ struct Multicopter::Impl {
     integrator->updAdvancedState().invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
     const std::uint64_t next = step_count + 1;
     std::optional<std::string> reason;
+    StepMeans means;
     try {
-      integrator->stepTo(static_cast<double>(next) * dt_s);
+      // One sub-step at a time, summing what the IMU averages over the step.
+      const double h_s = dt_s / substeps;
+      const Eigen::Vector3d g_ENU_m_s2(0.0, 0.0, -world.gravity_m_s2);
+      Eigen::Vector3d v_before_ENU_m_s = published.v_ENU_m_s;
+      for (int i = 1; i <= substeps; ++i) {
+        const double t_s = i == substeps ? static_cast<double>(next) * dt_s
+                                         : static_cast<double>(step_count) * dt_s + i * h_s;
+        integrator->stepTo(t_s);
+        const SimTK::State& s = integrator->getState();
+        system.realize(s, SimTK::Stage::Velocity);
+        const SimTK::Rotation& R_FLU_to_ENU = base().getBodyTransform(s).R();
+        const Eigen::Vector3d v_ENU_m_s = to_eigen(base().getBodyOriginVelocity(s));
+        const Eigen::Vector3d a_ENU_m_s2 = (v_ENU_m_s - v_before_ENU_m_s) / h_s;
+        means.specific_force_FLU_m_s2 += to_eigen(~R_FLU_to_ENU * to_simtk(a_ENU_m_s2 - g_ENU_m_s2));
+        means.w_FLU_rad_s += to_eigen(~R_FLU_to_ENU * base().getBodyAngularVelocity(s));
+        v_before_ENU_m_s = v_ENU_m_s;
+      }
+      means.specific_force_FLU_m_s2 /= substeps;
+      means.w_FLU_rad_s /= substeps;
       reason = blow_up_reason(integrator->getState());
     } catch (const std::exception& e) {
       reason = std::string("Simbody: ") + e.what();
@@ -172,7 +207,7 @@ struct Multicopter::Impl {
       return *failure;
     }
     step_count = next;
-    published = extract(integrator->getState(), &published);
+    published = extract(integrator->getState(), &published, &means);
     update_anchors();
     return Ok{};
   }
@@ -188,6 +223,8 @@ struct Multicopter::Impl {
   ForceInputs inputs;
   Wind wind;
   std::optional<SimTK::SemiExplicitEulerIntegrator> integrator;
+  int substeps = 1;
+  std::array<ContactPoint, kContactPoints> contacts;
   InputCounters counters;
   VehicleState published;
   std::uint64_t step_count = 0;

@@ -9,7 +9,7 @@ namespace hitl::model {
 MulticopterForces::MulticopterForces(const VehicleConfig& vehicle, const SimTK::SimbodyMatterSubsystem& matter,
                                      SimTK::MobilizedBodyIndex base,
                                      const std::array<SimTK::MobilizedBodyIndex, 4>& rotors, const ForceInputs& inputs)
-    : vehicle_(vehicle), matter_(matter), base_(base), rotors_(rotors), inputs_(inputs) {}
+    : vehicle_(vehicle), contacts_(contact_points(vehicle.landing_gear)), matter_(matter), base_(base), rotors_(rotors), inputs_(inputs) {}
 
 void MulticopterForces::calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
                                   SimTK::Vector_<SimTK::Vec3>& /*particle_forces*/,
@@ -48,14 +48,14 @@ void MulticopterForces::calcForce(const SimTK::State& state, SimTK::Vector_<SimT
   const SimTK::Vec3 f_base_ENU_N = R_FLU_to_ENU * to_simtk(drag_FLU_N) + to_simtk(inputs_.external_force_ENU_N);
   base.applyForceToBodyPoint(state, SimTK::Vec3(0), f_base_ENU_N, body_forces);
 
-  // Landing gear.
-  const LandingGearConfig& gear = vehicle_.landing_gear;
-  for (std::size_t k = 0; k < gear.contact_points_FLU_m.size(); ++k) {
-    const SimTK::Vec3 p_FLU_m = to_simtk(gear.contact_points_FLU_m[k]);
+  // Ground contact: legs and frame points.
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const SimTK::Vec3 p_FLU_m = to_simtk(contacts_[k].p_FLU_m);
     const Eigen::Vector3d p_ENU_m = to_eigen(X_ENU_FLU * p_FLU_m);
     if (p_ENU_m.z() >= 0.0) continue;
     const Eigen::Vector3d v_ENU_m_s = to_eigen(base.findStationVelocityInGround(state, p_FLU_m));
-    const Eigen::Vector3d f_ENU_N = ground_contact_force_ENU_N(gear, p_ENU_m, v_ENU_m_s, inputs_.anchors[k]);
+    const Eigen::Vector3d f_ENU_N =
+        ground_contact_force_ENU_N(vehicle_.landing_gear, contacts_[k], p_ENU_m, v_ENU_m_s, inputs_.anchors[k]);
     base.applyForceToBodyPoint(state, p_FLU_m, to_simtk(f_ENU_N), body_forces);
   }
 }

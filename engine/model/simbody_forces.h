@@ -1,6 +1,7 @@
 // PRIVATE to engine/model (includes Simbody): the x500's applied forces as one Simbody custom
 // force: motor torques on the rotor pins, rotor thrust/drag at the hubs, yaw drag torque and
-// rolling moment on the frame, linear body drag, an external force, and the landing gear.
+// rolling moment on the frame, linear body drag, an external force, and the ground contact
+// (legs and frame points).
 #pragma once
 
 #include <array>
@@ -19,7 +20,7 @@ struct ForceInputs {
   std::array<double, 4> omega_ref_rad_s{};
   Eigen::Vector3d wind_ENU_m_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d external_force_ENU_N = Eigen::Vector3d::Zero();
-  std::array<ContactAnchor, 4> anchors{};
+  std::array<ContactAnchor, kContactPoints> anchors{};  ///< per contact_points() entry
   double substep_s = 0.004;  ///< the integrator's fixed step (the motor torque aims to land on the lag curve)
 };
 
@@ -38,6 +39,7 @@ class MulticopterForces : public SimTK::Force::Custom::Implementation {
 
  private:
   VehicleConfig vehicle_;
+  std::array<ContactPoint, kContactPoints> contacts_;
   const SimTK::SimbodyMatterSubsystem& matter_;
   SimTK::MobilizedBodyIndex base_;
   std::array<SimTK::MobilizedBodyIndex, 4> rotors_;

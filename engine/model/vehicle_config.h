@@ -39,11 +39,19 @@ struct BaseConfig {
   Eigen::Vector3d linear_drag_N_s_m = Eigen::Vector3d::Zero();  ///< F_FLU = -c (.) v_air_FLU, per body axis
 };
 
-/// Ground contact: a spring-damper at each skid end, stick-slip friction (simbody-facts.md).
+/// Ground contact (ground_contact.h): the legs' spring-damper at each skid end, and stiffer frame
+/// points (the motor tops) so that the vehicle rests on the ground at any attitude, upside down
+/// included; stick-slip friction at every point (simbody-facts.md).
 struct LandingGearConfig {
-  std::array<Eigen::Vector3d, 4> contact_points_FLU_m{};
-  double stiffness_N_m = 0.0;             ///< normal, per contact point
-  double damping_N_s_m = 0.0;             ///< normal, per contact point
+  std::array<Eigen::Vector3d, 4> contact_points_FLU_m{};  ///< skid ends: the legs
+  double stiffness_N_m = 0.0;             ///< legs: normal, per contact point
+  double damping_N_s_m = 0.0;             ///< legs: normal, per contact point
+  /// The damping grows linearly with the compression up to this depth (then holds): a leg touching
+  /// down does not jerk (no force step at first contact), as a real leg's flex and foam do.
+  double damping_depth_m = 0.0;
+  std::array<Eigen::Vector3d, 4> frame_points_FLU_m{};  ///< the frame's other extremes (motor tops)
+  double frame_stiffness_N_m = 0.0;       ///< frame points: normal, per point
+  double frame_damping_N_s_m = 0.0;       ///< frame points: normal, per point
   double friction_coefficient = 0.0;      ///< mu: tangential force capped at mu * normal force
   double tangential_stiffness_N_m = 0.0;  ///< spring to the stick anchor, per contact point
   double tangential_damping_N_s_m = 0.0;
@@ -61,6 +69,8 @@ struct InertialNoiseConfig {
 struct ImuConfig {
   double rate_hz = 0.0;
   Eigen::Vector3d position_FLU_m = Eigen::Vector3d::Zero();  ///< IMU mount from base origin (axes = body)
+  double accel_range_m_s2 = 0.0;  ///< full scale per axis: readings saturate here (x500: +-16 g)
+  double gyro_range_rad_s = 0.0;  ///< full scale per axis (x500: +-2000 deg/s)
   InertialNoiseConfig gyro;   ///< rad/s
   InertialNoiseConfig accel;  ///< m/s^2
 };

@@ -19,11 +19,17 @@ struct VehicleState {
   Eigen::Vector3d a_ENU_m_s2 = Eigen::Vector3d::Zero();   ///< base origin acceleration over the last step
   Eigen::Vector3d w_FLU_rad_s = Eigen::Vector3d::Zero();  ///< body angular velocity, expressed in FLU
   Eigen::Vector3d alpha_FLU_rad_s2 = Eigen::Vector3d::Zero();  ///< body angular acceleration over the last step
-  /// Specific force at the base origin (a - g), in FLU: what an accelerometer there reads.
+  /// Specific force at the base origin (a - g), in FLU, averaged over the step (the mean over the
+  /// physics sub-steps, each in its own body frame): what an accelerometer there reads, as its
+  /// output filter averages the samples between two readings.
   Eigen::Vector3d specific_force_FLU_m_s2 = Eigen::Vector3d::Zero();
+  /// Body angular velocity averaged over the step (the sub-steps' mean): what a gyro reads.
+  Eigen::Vector3d w_step_mean_FLU_rad_s = Eigen::Vector3d::Zero();
   std::array<double, 4> rotor_speed_rad_s{};  ///< spin rate magnitude per rotor, PX4 motor order
   Eigen::Vector3d wind_ENU_m_s = Eigen::Vector3d::Zero();  ///< air velocity (mean + gust) this step
-  bool on_ground = false;  ///< any landing-gear contact point touches the ground
+  bool on_ground = false;  ///< any contact point (legs or frame) touches the ground
+  /// Height of the lowest contact point above the ground (negative: compressed into it).
+  double ground_clearance_m = 0.0;
 };
 
 }  // namespace hitl::model

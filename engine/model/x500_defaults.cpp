@@ -53,8 +53,23 @@ VehicleConfig x500_vehicle_config() {
       Eigen::Vector3d{+skid_half_length_m, -skid_y_m, skid_bottom_z_m},
       Eigen::Vector3d{-skid_half_length_m, -skid_y_m, skid_bottom_z_m},
   };
-  c.landing_gear.stiffness_N_m = 1.0e4;  // simbody-facts.md: 1e4 N/m and 100 N s/m per skid end
-  c.landing_gear.damping_N_s_m = 100.0;
+  // Legs: stop a touchdown over tens of milliseconds, as the x500's carbon legs and skids do (0.7 m/s:
+  // ~5 g peak over ~25 ms, docs/engine.md), sink 5 mm under the static load, and throw nothing back
+  // up (damping ratio ~0.65 per leg, ramped in over the first 5 mm of compression).
+  c.landing_gear.stiffness_N_m = 1.0e3;
+  c.landing_gear.damping_N_s_m = 30.0;
+  c.landing_gear.damping_depth_m = 0.005;
+  // Frame points: the motor tops (the frame's other extremes); stiff, so that the vehicle rests on
+  // its back or side without sinking, even with the rotors pushing it into the ground.
+  constexpr double motor_top_z_m = kRotorHeight_m + 0.02;
+  c.landing_gear.frame_points_FLU_m = {
+      Eigen::Vector3d{+kArm_m, -kArm_m, motor_top_z_m},
+      Eigen::Vector3d{-kArm_m, +kArm_m, motor_top_z_m},
+      Eigen::Vector3d{+kArm_m, +kArm_m, motor_top_z_m},
+      Eigen::Vector3d{-kArm_m, -kArm_m, motor_top_z_m},
+  };
+  c.landing_gear.frame_stiffness_N_m = 1.0e4;  // simbody-facts.md: stable at 4 ms
+  c.landing_gear.frame_damping_N_s_m = 100.0;
   c.landing_gear.friction_coefficient = 0.8;
   c.landing_gear.tangential_stiffness_N_m = 4.0e3;  // stable at 4 ms up to ~7e3 (roll coupling through the skids)
   c.landing_gear.tangential_damping_N_s_m = 3.0;
@@ -62,6 +77,9 @@ VehicleConfig x500_vehicle_config() {
   // Gazebo-classic iris / ADIS16448-class IMU (x500.md).
   c.sensors.imu.rate_hz = 250.0;
   c.sensors.imu.position_FLU_m = {0.0, 0.0, 0.0};
+  // The VOXL2's ICM-42688-class IMU as PX4 configures it: +-16 g, +-2000 deg/s.
+  c.sensors.imu.accel_range_m_s2 = 16.0 * 9.80665;
+  c.sensors.imu.gyro_range_rad_s = 2000.0 * M_PI / 180.0;
   c.sensors.imu.gyro = {0.0003394, 3.8785e-05, 1000.0, 0.0087};
   c.sensors.imu.accel = {0.004, 0.006, 300.0, 0.196};
   c.sensors.mag.rate_hz = 50.0;

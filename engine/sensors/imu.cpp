@@ -1,9 +1,24 @@
 #include "engine/sensors/imu.h"
 
+#include <algorithm>
+
 #include "engine/frames/frames.h"
 #include "engine/model/atmosphere.h"
 
 namespace hitl::sensors {
+
+bool saturate(Eigen::Vector3d& v, double range) {
+  if (!(range > 0.0)) return false;  // a config built in code without a range: no limit
+  const double full_scale = range * 32767.0 / 32768.0;
+  bool clipped = false;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(v[i]) > full_scale) {
+      v[i] = std::clamp(v[i], -full_scale, full_scale);
+      clipped = true;
+    }
+  }
+  return clipped;
+}
 
 Imu::Imu(const model::ImuConfig& config, const model::WorldConfig& world, std::uint64_t seed)
     : config_(config),
@@ -20,13 +35,15 @@ void Imu::reset() {
 ImuSample Imu::sample(const model::VehicleState& state, double t_s) {
   const double dt_s = sample_interval_s(last_t_s_, t_s, config_.rate_hz);
   const Eigen::Vector3d& r_FLU_m = config_.position_FLU_m;
-  const Eigen::Vector3d& w = state.w_FLU_rad_s;
+  const Eigen::Vector3d& w = state.w_step_mean_FLU_rad_s;
   // Specific force at the mount, FLU: lever-arm terms of a rigid body.
   const Eigen::Vector3d f_FLU = state.specific_force_FLU_m_s2 + state.alpha_FLU_rad_s2.cross(r_FLU_m) + w.cross(w.cross(r_FLU_m));
   ImuSample s;
   s.time_s = t_s;
   s.accel_FRD_m_s2 = accel_noise_.apply(frames::flu_to_frd(f_FLU), dt_s);
   s.gyro_FRD_rad_s = gyro_noise_.apply(frames::flu_to_frd(w), dt_s);
+  if (saturate(s.accel_FRD_m_s2, config_.accel_range_m_s2)) ++saturation_.accel;
+  if (saturate(s.gyro_FRD_rad_s, config_.gyro_range_rad_s)) ++saturation_.gyro;
   s.temperature_c = model::isa_temperature_c(world_.atmosphere, world_.home.alt_m + state.p_ENU_m.z());
   return s;
 }

@@ -1,7 +1,11 @@
 // Accelerometer + gyroscope at the IMU mount (x500: base origin).
-//   accel_FRD = FRD( f_o + alpha x r + w x (w x r) ) + noise     f_o = R^T (a_o - g): specific force
-//   gyro_FRD  = FRD( w ) + noise                                  at the base origin, r = mount (FLU)
-// Level at rest: accel (0, 0, -g). Temperature: ISA at the vehicle's altitude.
+//   accel_FRD = sat( FRD( f + alpha x r + w x (w x r) ) + noise )    f: specific force at the base
+//   gyro_FRD  = sat( FRD( w ) + noise )                              origin, r = mount (FLU)
+// f and w are the means over the physics step (VehicleState), as an IMU's output filter averages
+// between two readings. sat() clips each axis at the configured full scale, as the sensor's 16-bit
+// register does (the largest count, 32767/32768 of the range: ICM-42688 at +-16 g reads at most
+// 15.9995 g), and such samples are counted. Level at rest: accel (0, 0, -g). Temperature: ISA at
+// the vehicle's altitude.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +18,12 @@
 
 namespace hitl::sensors {
 
+/// Samples with at least one axis clipped at full scale, since construction (resets keep them).
+struct ImuSaturation {
+  uint64_t accel = 0;
+  uint64_t gyro = 0;
+};
+
 class Imu {
  public:
   Imu(const model::ImuConfig& config, const model::WorldConfig& world, std::uint64_t seed);
@@ -22,6 +32,7 @@ class Imu {
   double rate_hz() const { return config_.rate_hz; }
   const InertialNoise& accel_noise() const { return accel_noise_; }
   const InertialNoise& gyro_noise() const { return gyro_noise_; }
+  const ImuSaturation& saturation() const { return saturation_; }
 
  private:
   model::ImuConfig config_;
@@ -29,6 +40,11 @@ class Imu {
   InertialNoise accel_noise_;
   InertialNoise gyro_noise_;
   double last_t_s_ = -1.0;
+  ImuSaturation saturation_;
 };
+
+/// Clips each axis to +-the largest 16-bit count of `range` (range * 32767 / 32768); true when any was.
+/// A range of 0 (a config built in code without one) clips nothing.
+bool saturate(Eigen::Vector3d& v, double range);
 
 }  // namespace hitl::sensors

@@ -36,6 +36,7 @@ class SensorSuite {
   void reset();
 
   Imu& imu() { return imu_; }
+  const Imu& imu() const { return imu_; }
   Magnetometer& magnetometer() { return mag_; }
   Barometer& barometer() { return baro_; }
   Gps& gps() { return gps_; }

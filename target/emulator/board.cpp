@@ -73,6 +73,8 @@ struct Board::Impl {
   bool sensor_time_started = false;
   uint64_t sensor_time_origin_us = 0;
   uint64_t sensor_time_base_us = 0;
+  uint64_t last_sensor_time_us = 0;   ///< the last HIL_SENSOR.time_usec (lockstep answers echo it)
+  uint64_t sim_sessions = 0;          ///< lockstep: simulator sessions seen (time_usec went back: a new one)
   uint64_t hil_sensor_received = 0, hil_gps_received = 0, odometry_received = 0, actuators_sent = 0;
   uint64_t commands_received = 0, params_set = 0;
   std::array<double, 4> motors{};
@@ -258,7 +260,9 @@ struct Board::Impl {
     if (config.faults.no_actuators) return;  // --fault no-actuators
     const auto s = flight->state();
     msg::HilActuatorControls m;
-    m.time_usec = now_us;
+    // Lockstep: stamped with the HIL_SENSOR it answers, as PX4 SITL stamps it with its lockstep
+    // clock (the simulator matches answers to steps by it); otherwise the board's own clock.
+    m.time_usec = config.lockstep && sensor_time_started ? last_sensor_time_us : now_us;
     for (std::size_t i = 0; i < 4; ++i) m.controls[i] = s.armed ? static_cast<float>(motors[i]) : 0.0f;
     m.mode = base_mode_with_hil(s);
     m.flags = config.faults.wrong_flags ? kWrongActuatorFlags : 0x0F;  // the VOXL2's quad bitmask (spec)
@@ -494,15 +498,24 @@ struct Board::Impl {
 
   /// Lockstep: the board's clock follows HIL_SENSOR.time_usec from the first one on, continuing
   /// from the wall-clock time it had until then (so HEARTBEATs flow before the simulator starts).
+  /// A time_usec lower than the last one is a new simulator session (each starts again near 0):
+  /// the board re-anchors, its own clock carrying on from where it was, as it did for the first.
   void advance_sensor_clock(uint64_t time_usec) {
-    if (!sensor_time_started) {
+    if (!sensor_time_started || time_usec < last_sensor_time_us) {
+      if (sensor_time_started) {
+        ++sim_sessions;
+        new_session_text = "lockstep: a new simulator session (HIL_SENSOR.time_usec went back from " +
+                           std::to_string(last_sensor_time_us / 1000) + " ms to " + std::to_string(time_usec / 1000) +
+                           " ms); the board's clock carries on from " + std::to_string(now_us / 1000) + " ms";
+      }
       sensor_time_started = true;
       sensor_time_origin_us = time_usec;
       sensor_time_base_us = now_us;
     }
-    if (time_usec >= sensor_time_origin_us)
-      now_us = std::max(now_us, sensor_time_base_us + (time_usec - sensor_time_origin_us) + 4000);
+    last_sensor_time_us = time_usec;
+    now_us = std::max(now_us, sensor_time_base_us + (time_usec - sensor_time_origin_us) + 4000);
   }
+  std::string new_session_text;  ///< said by run() (it holds the observer), then cleared
 
   // --- the board's own processing ----------------------------------------------------------------
   void process_board(uint64_t t_us) {
@@ -759,6 +772,10 @@ Expected<Board::EndReason> Board::run(const std::atomic<bool>& stop, Observer& o
       announced = true;
       s.statustext("hitl target: an emulated VOXL2 board, not PX4", mavlink::MavSeverity::Notice);
       observer.on_event({false, "first MAVLink partner: " + (s.hil->partner() ? s.hil->partner()->to_string() : s.gcs->partner()->to_string())});
+    }
+    if (!s.new_session_text.empty()) {
+      observer.on_event({false, s.new_session_text});
+      s.new_session_text.clear();
     }
     if (!s.config.lockstep) s.process_board(s.now_us);
     for (auto* inst : s.instances())

@@ -148,6 +148,14 @@ class GroundStation {
   std::chrono::steady_clock::time_point last_rc_{};
 };
 
+/// The landing check (issue 20): one touchdown, no rebound over 5 cm, every IMU sample in range.
+void expect_clean_landing(const nlohmann::json& summary) {
+  EXPECT_EQ(summary["landing"]["touchdowns"], 1) << summary["landing"].dump();
+  EXPECT_LE(summary["landing"]["max_rebound_m"].get<double>(), 0.05) << summary["landing"].dump();
+  EXPECT_EQ(summary["imu_saturated"]["accel"], 0);
+  EXPECT_EQ(summary["imu_saturated"]["gyro"], 0);
+}
+
 bool contains(const std::vector<std::string>& texts, const std::string& what) {
   for (const auto& t : texts)
     if (t.find(what) != std::string::npos) return true;
@@ -222,6 +230,7 @@ TEST(ClosedLoopE2E, TargetAndSimFlyTheWholeMissionThroughMavlink) {
   ASSERT_FALSE(lines.empty());
   const auto summary = nlohmann::json::parse(lines.back());
   EXPECT_EQ(summary["lockstep"]["fallbacks"], 0) << "lockstep should never have waited in vain";
+  expect_clean_landing(summary);
 }
 
 TEST(ClosedLoopE2E, SimFliesATrajectoryFileAgainstTheBoard) {
@@ -247,8 +256,40 @@ TEST(ClosedLoopE2E, SimFliesATrajectoryFileAgainstTheBoard) {
   EXPECT_FALSE(j["armed"].get<bool>());
   for (const char* state : {"ARM", "TAKEOFF", "TRAJECTORY", "HOLD", "LAND", "DONE"})
     EXPECT_NE(sim.err().find(std::string("trajectory: ") + state), std::string::npos) << state;
+  expect_clean_landing(j);
   board.signal(SIGINT);
   EXPECT_EQ(board.wait(20s), 0);
+}
+
+/// Issue 18.3: one `hitl target --lockstep`, several `hitl sim --lockstep` sessions in a row. Each
+/// new session starts its clock again near 0; the board notices (time_usec went back) and
+/// re-anchors, so every square flies and lands like the first.
+TEST(ClosedLoopE2E, LockstepSquaresInARowAgainstOneTarget) {
+  constexpr int kSquares = 3;
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  for (int i = 0; i < kSquares; ++i) {
+    SCOPED_TRACE("square " + std::to_string(i + 1));
+    test::Process sim({test::hitl_binary(), "--json", "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--local-port", std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed",
+                       "0", "-t", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json"});
+    ASSERT_EQ(sim.wait(180s), 0) << sim.err();
+    const auto lines = sim.out_lines();
+    ASSERT_FALSE(lines.empty()) << sim.err();
+    const auto j = nlohmann::json::parse(lines.back());
+    EXPECT_EQ(j["end"], "trajectory_done") << sim.err();
+    EXPECT_EQ(j["lockstep"]["fallbacks"], 0);
+    EXPECT_EQ(j["lockstep"]["foreign_clock"], 0) << "the board echoes each HIL_SENSOR's time_usec";
+    expect_clean_landing(j);
+  }
+  ASSERT_TRUE(board.running()) << board.err();
+  board.signal(SIGINT);
+  EXPECT_EQ(board.wait(20s), 0);
+  std::size_t anchors = 0;
+  for (std::size_t at = 0; (at = board.err().find("a new simulator session", at)) != std::string::npos; ++at) ++anchors;
+  EXPECT_EQ(anchors, static_cast<std::size_t>(kSquares - 1)) << board.err();
 }
 
 TEST(ClosedLoopE2E, BadTrajectoryFileIsRefusedBeforeAnythingIsSent) {

@@ -69,6 +69,21 @@ TEST(Config, OutOfRangeNamesFileKeyAndValue) {
   EXPECT_EQ(w.error().message, "world.json: home.lat_deg: must be in [-90, 90] (got 91)");
 }
 
+TEST(Config, ImuRangeAndGroundContactKeys) {
+  auto v = parse_vehicle_config(R"({"sensors": {"imu": {"accel_range_m_s2": 78.45, "gyro_range_rad_s": 17.45}},
+                                   "landing_gear": {"damping_depth_m": 0.01, "frame_stiffness_N_m": 5000,
+                                                    "frame_points_FLU_m": [[0,0,0.1],[0,0,0.1],[0,0,0.1],[0,0,0.1]]}})",
+                                "vehicle.json");
+  ASSERT_TRUE(v.ok()) << v.error().message;
+  EXPECT_EQ(v.value().sensors.imu.accel_range_m_s2, 78.45);
+  EXPECT_EQ(v.value().sensors.imu.gyro_range_rad_s, 17.45);
+  EXPECT_EQ(v.value().landing_gear.damping_depth_m, 0.01);
+  EXPECT_EQ(v.value().landing_gear.frame_stiffness_N_m, 5000);
+  auto bad = parse_vehicle_config(R"({"sensors": {"imu": {"accel_range_m_s2": 0}}})", "vehicle.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().message, "vehicle.json: sensors.imu.accel_range_m_s2: must be > 0 (got 0)");
+}
+
 TEST(Config, UnknownKeysAreErrors) {
   auto v = parse_vehicle_config(R"({"base": {"mas_kg": 2}, "colour": "red"})", "vehicle.json");
   ASSERT_FALSE(v.ok());

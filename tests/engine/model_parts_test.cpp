@@ -70,8 +70,16 @@ TEST(GroundContact, PushesOnlyWhenTouchingAndNeverPulls) {
   const ContactAnchor none;
   EXPECT_EQ(ground_contact_force_ENU_N(gear, {0, 0, 0.01}, {0, 0, -1}, none), Eigen::Vector3d::Zero());
   EXPECT_NEAR(ground_contact_force_ENU_N(gear, {0, 0, -0.001}, {0, 0, 0}, none).z(), gear.stiffness_N_m * 0.001, 1e-9);
-  EXPECT_NEAR(ground_contact_force_ENU_N(gear, {0, 0, -0.001}, {0, 0, -0.1}, none).z(),
-              gear.stiffness_N_m * 0.001 + gear.damping_N_s_m * 0.1, 1e-9);
+  // The damping ramps in over damping_depth_m: a fifth of it at a fifth of that depth, all of it below.
+  const double d = gear.damping_depth_m;
+  EXPECT_NEAR(ground_contact_force_ENU_N(gear, {0, 0, -0.2 * d}, {0, 0, -0.1}, none).z(),
+              gear.stiffness_N_m * 0.2 * d + 0.2 * gear.damping_N_s_m * 0.1, 1e-9);
+  EXPECT_NEAR(ground_contact_force_ENU_N(gear, {0, 0, -2 * d}, {0, 0, -0.1}, none).z(),
+              gear.stiffness_N_m * 2 * d + gear.damping_N_s_m * 0.1, 1e-9);
+  // A frame point is a stiffer spring.
+  const ContactPoint frame = contact_points(gear)[4];
+  EXPECT_EQ(frame.p_FLU_m, gear.frame_points_FLU_m[0]);
+  EXPECT_NEAR(ground_contact_force_ENU_N(gear, frame, {0, 0, -0.001}, {0, 0, 0}, none).z(), gear.frame_stiffness_N_m * 0.001, 1e-9);
   EXPECT_EQ(ground_contact_force_ENU_N(gear, {0, 0, -0.001}, {0, 0, 1.0}, none), Eigen::Vector3d::Zero());
 }
 

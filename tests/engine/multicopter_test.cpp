@@ -155,21 +155,21 @@ TEST(Multicopter, CcwPairFasterYawsRight) {
 double land(Multicopter& m, double touchdown_m_s) {
   InitialCondition ic = m.resting_on_ground();
   const double z_rest = ic.p_ENU_m.z();
-  ic.p_ENU_m.z() += 0.005;
+  ic.p_ENU_m.z() = -m.vehicle_config().landing_gear.contact_points_FLU_m[0].z() + 0.001;  // legs 1 mm above the ground
   ic.v_ENU_m_s = {0.0, 0.0, -touchdown_m_s};
   m.reset(ic);
   bool touched = false;
-  double z_max_after_touch = -1.0;
+  double max_clearance_after_touch = -1.0;  // how high the legs rise again once they touched
   for (int i = 0; i < 750; ++i) {  // 3 s
     EXPECT_TRUE(m.step().ok());
     touched = touched || m.state().on_ground;
-    if (touched) z_max_after_touch = std::max(z_max_after_touch, m.state().p_ENU_m.z());
+    if (touched) max_clearance_after_touch = std::max(max_clearance_after_touch, m.state().ground_clearance_m);
   }
   EXPECT_TRUE(touched);
   EXPECT_NEAR(m.state().p_ENU_m.z(), z_rest, 1e-3) << "sinks or floats";
   EXPECT_LT(m.state().v_ENU_m_s.norm(), 1e-3);
   EXPECT_LT(m.state().p_ENU_m.head<2>().norm(), 1e-3) << "slides";
-  return z_max_after_touch - z_rest;
+  return max_clearance_after_touch;
 }
 
 /// Roll rate (FLU) after 0.1 s of a 1 rad/s pitch rate, without gravity, rotors at 800 rad/s.
@@ -207,7 +207,7 @@ TEST(Multicopter, LandsWithoutBounceOrSink) {
   auto m = make();
   EXPECT_LT(land(*m, 0.7), 0.002);  // PX4's default landing speed
   EXPECT_LT(land(*m, 1.5), 0.002);
-  EXPECT_LT(land(*m, 3.0), 0.02);  // a hard landing: a few mm
+  EXPECT_LT(land(*m, 3.0), 0.02);  // a hard landing: a few mm at most
 }
 
 TEST(Multicopter, FrictionHoldsSmallSideLoadAtRest) {
@@ -215,7 +215,8 @@ TEST(Multicopter, FrictionHoldsSmallSideLoadAtRest) {
   const Eigen::Vector3d start = m->state().p_ENU_m;
   m->set_external_force_ENU_N({2.0, 1.0, 0.0});
   run_s(*m, 5.0);
-  EXPECT_LT((m->state().p_ENU_m - start).head<2>().norm(), 1e-3);
+  // It leans on its legs (the load acts 0.23 m above the skids: ~1.6 mm at the base), never slides.
+  EXPECT_LT((m->state().p_ENU_m - start).head<2>().norm(), 3e-3);
   EXPECT_LT(m->state().v_ENU_m_s.norm(), 1e-4);
 }
 

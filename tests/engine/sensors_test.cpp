@@ -40,9 +40,9 @@ TEST(Imu, LevelAtRestReadsMinusGInFrdExactlyWithoutNoise) {
 TEST(Imu, NoseUpPitchRateIsPositiveY) {
   Imu imu(noiseless().sensors.imu, model::default_world_config(), 1);
   model::VehicleState s = at_rest();
-  s.w_FLU_rad_s = {0.0, -0.3, 0.0};  // nose up: about the left (FLU y) axis, negatively
+  s.w_step_mean_FLU_rad_s = {0.0, -0.3, 0.0};  // nose up: about the left (FLU y) axis, negatively
   EXPECT_NEAR(imu.sample(s, 0.004).gyro_FRD_rad_s.y(), 0.3, 1e-15);
-  s.w_FLU_rad_s = {0.0, 0.0, -0.2};  // turning right (clockwise from above)
+  s.w_step_mean_FLU_rad_s = {0.0, 0.0, -0.2};  // turning right (clockwise from above)
   EXPECT_NEAR(imu.sample(s, 0.008).gyro_FRD_rad_s.z(), 0.2, 1e-15);
 }
 
@@ -51,7 +51,7 @@ TEST(Imu, LeverArmAddsCentripetalAcceleration) {
   config.position_FLU_m = {0.1, 0.0, 0.0};
   Imu imu(config, model::default_world_config(), 1);
   model::VehicleState s = at_rest();
-  s.w_FLU_rad_s = {0.0, 0.0, 2.0};  // spinning about z: the mount accelerates towards the axis
+  s.w_step_mean_FLU_rad_s = {0.0, 0.0, 2.0};  // spinning about z (the step's mean rate, as the IMU reads it)
   const ImuSample out = imu.sample(s, 0.004);
   EXPECT_NEAR(out.accel_FRD_m_s2.x(), -0.1 * 4.0, 1e-12);
   EXPECT_NEAR(out.accel_FRD_m_s2.z(), -kG, 1e-12);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "engine/mavlink/messages.h"
+#include "tests/support/json_lines.h"
 #include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
 
@@ -194,6 +195,12 @@ TEST_F(Px4Sitl, FliesWithTheSplitAndDspHitlInTheLoop) {
 
   sim.signal(SIGINT);
   EXPECT_EQ(sim.wait(20s), 0) << sim.err();
+  // The landing check (issue 20): one touchdown, no rebound over 5 cm, no IMU sample clipped.
+  const auto summary = last_json_line(sim.out());
+  std::cout << "landing: " << summary["landing"].dump() << ", IMU clipped: " << summary["imu_saturated"].dump() << std::endl;
+  EXPECT_EQ(summary["landing"]["touchdowns"], 1) << summary["landing"].dump();
+  EXPECT_LE(summary["landing"]["max_rebound_m"].get<double>(), 0.05) << summary["landing"].dump();
+  EXPECT_EQ(summary["imu_saturated"]["accel"], 0);
   px4.signal(SIGTERM);
   px4.wait(30s);
 }
