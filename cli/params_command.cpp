@@ -3,6 +3,7 @@
 #include <fnmatch.h>
 #include <unistd.h>
 
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -112,6 +113,15 @@ int push(const GlobalOptions& g, Session& s, const std::vector<vehicle::Param>& 
 }
 
 int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& action) {
+  // A bad file is refused before anything talks to the board.
+  std::optional<Expected<std::vector<vehicle::Param>>> file;
+  if (action == "load") {
+    file.emplace(vehicle::load_params_file(o.file));
+    if (!*file) {
+      log_error("params", (*file).error().message);
+      return kExitUsage;
+    }
+  }
   auto s = open(g, o);
   if (!s) return kExitFailed;
   if (action == "show" || action == "export") {
@@ -211,14 +221,7 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
     }
     return all_ok ? kExitOk : kExitFailed;
   }
-  if (action == "load") {
-    auto file = vehicle::load_params_file(o.file);
-    if (!file) {
-      log_error("params", file.error().message);
-      return kExitUsage;
-    }
-    return push(g, *s, *file, o.dry_run, "load");
-  }
+  if (action == "load") return push(g, *s, **file, o.dry_run, "load");
   return push(g, *s, vehicle::hitl_default_params(), o.dry_run, "reset");
 }
 

@@ -1,5 +1,7 @@
 #include "engine/model/config_json.h"
 
+#include "engine/common/bounded_read.h"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -356,12 +358,8 @@ std::string write(const Config& config, Fields fields) {
   return root.dump(2);
 }
 
-Expected<std::string> read_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return Error{file.string() + ": cannot open for reading"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+Expected<std::string> read_file(const std::filesystem::path& file, const std::string& what) {
+  return read_bounded_file(file.string(), what, kMaxConfigFileBytes);
 }
 
 template <class Config>
@@ -380,7 +378,7 @@ Expected<VehicleConfig> parse_vehicle_config(std::string_view json_text, std::st
   return parse_vehicle_config(json_text, source_name, x500_vehicle_config());
 }
 Expected<VehicleConfig> load_vehicle_config(const std::filesystem::path& file) {
-  Expected<std::string> text = read_file(file);
+  Expected<std::string> text = read_file(file, "vehicle file");
   if (!text) return text.error();
   return parse_vehicle_config(*text, file.string());
 }
@@ -393,7 +391,7 @@ Expected<WorldConfig> parse_world_config(std::string_view json_text, std::string
   return parse_world_config(json_text, source_name, default_world_config());
 }
 Expected<WorldConfig> load_world_config(const std::filesystem::path& file) {
-  Expected<std::string> text = read_file(file);
+  Expected<std::string> text = read_file(file, "world file");
   if (!text) return text.error();
   return parse_world_config(*text, file.string());
 }
