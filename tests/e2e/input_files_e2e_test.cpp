@@ -54,6 +54,22 @@ TEST(InputFilesE2E, TrajectoryValuesBeyondPhysicalLimitsAreRefusedNamingTheKey) 
   }
 }
 
+// Found by the fuzzers: a number past a double's range (1e400) threw out of the JSON parser and
+// aborted hitl (SIGABRT).
+TEST(InputFilesE2E, NumbersPastADoublesRangeAreAnErrorNotAnAbort) {
+  const auto dir = test::temp_dir();
+  std::ofstream(dir + "/t.json") << R"({"waypoints":[{"t":0,"x":1e400,"y":0,"z":2}]})";
+  std::ofstream(dir + "/v.json") << R"({"mass_kg": 1e400})";
+  std::ofstream(dir + "/w.json") << R"({"home": {"lat_deg": -1e400}})";
+  for (const auto& c : std::vector<std::vector<std::string>>{{"sim", "-t", dir + "/t.json", "--duration", "1"},
+                                                             {"sim", "--vehicle", dir + "/v.json", "--duration", "1"},
+                                                             {"sim", "--world", dir + "/w.json", "--duration", "1"}}) {
+    auto r = test::run_hitl(c, 30s);
+    EXPECT_EQ(r.exit_code, 2) << c[2] << r.err;
+    EXPECT_NE(r.err.find("number overflow"), std::string::npos) << c[2] << r.err;
+  }
+}
+
 TEST(InputFilesE2E, NegativeSeedIsRefused) {
   auto r = test::run_hitl({"sim", "--seed", "-1", "--duration", "1"}, 30s);
   EXPECT_EQ(r.exit_code, 2) << r.err;
