@@ -19,6 +19,8 @@ TEST(InputFilesE2E, EndlessFilesAreRefusedWithTheLimitNamed) {
   const std::string zero = "/dev/zero";
   const std::vector<std::vector<std::string>> commands = {
       {"sim", "-t", zero, "--duration", "1"},
+      {"fly", "trajectory", zero},
+      {"demo", "-t", zero},
       {"sim", "--vehicle", zero, "--duration", "1"},
       {"sim", "--world", zero, "--duration", "1"},
       {"--config", zero, "inspect", "--tlog", zero},
