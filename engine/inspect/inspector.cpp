@@ -103,8 +103,12 @@ void Inspector::send_heartbeat() {
 
 telemetry::TrafficSummary Inspector::summary() const {
   mavlink::ParserStats parser = parser_.stats();
-  // A log's last record cut off by the end of the file (a killed writer) is a truncated frame too.
-  if (reader_) parser.truncated += reader_->stats().truncated;
+  // A log's last record cut off by the end of the file (a killed writer) is a truncated frame too,
+  // and bytes between records that are no timestamp + frame are garbage.
+  if (reader_) {
+    parser.truncated += reader_->stats().truncated;
+    parser.garbage_bytes += reader_->stats().skipped_bytes;
+  }
   return stats_.summary(now_ns_, parser);
 }
 

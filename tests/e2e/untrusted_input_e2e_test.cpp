@@ -96,6 +96,7 @@ TEST(UntrustedInputE2E, CutLastRecordOfATlogIsReportedTruncated) {
   const auto j = test::last_json_line(r.out);
   EXPECT_EQ(j["messages"]["HEARTBEAT"]["count"], 9);
   EXPECT_EQ(j["truncated"], 1);
+  EXPECT_EQ(j["garbage_bytes"], 8 + 21 - 5);  // the cut record's bytes
   auto text = test::run_hitl({"inspect", "--tlog", path});
   EXPECT_NE(text.out.find("truncated 1"), std::string::npos) << text.out;
 }
