@@ -1,4 +1,5 @@
 #include "cli/common_options.h"
+#include "engine/common/bounded_read.h"
 
 #include <unistd.h>
 
@@ -11,6 +12,33 @@
 #include "engine/mavlink/dialect_xml.h"
 
 namespace hitl::cli {
+
+namespace {
+
+/// CLI11's TOML reader with a size cap: `--config /dev/zero` is a named error, not a 2 GB read.
+class BoundedConfigToml : public CLI::ConfigTOML {
+ public:
+  explicit BoundedConfigToml(const CLI::App& app) : app_(app) {}
+  std::vector<CLI::ConfigItem> from_config(std::istream& input) const override {
+    std::string text(kMaxConfigFileBytes + 1, '\0');
+    input.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(input.gcount()));
+    if (text.size() > kMaxConfigFileBytes) {
+      const auto* option = app_.get_config_ptr();
+      const auto files = option != nullptr ? option->as<std::vector<std::string>>() : std::vector<std::string>{};
+      const std::string name = files.empty() ? "" : " '" + files.back() + "'";
+      throw CLI::FileError("--config" + name + " is larger than " + byte_size_text(kMaxConfigFileBytes) +
+                           ", the limit for a configuration file (an endless file such as /dev/zero?)");
+    }
+    std::istringstream bounded(text);
+    return CLI::ConfigTOML::from_config(bounded);
+  }
+
+ private:
+  const CLI::App& app_;
+};
+
+}  // namespace
 
 void add_global_options(CLI::App& app, GlobalOptions& options) {
   app.add_flag("--json", options.json, "Machine output: one JSON object per line, a final summary object last")
@@ -25,6 +53,7 @@ void add_global_options(CLI::App& app, GlobalOptions& options) {
   app.set_config("--config", "", "Read options from a TOML file ([inspect] port = 14570, ...; docs/config.md)")
       ->type_name(value_type::kConfigFile)
       ->group("Config");
+  app.config_formatter(std::make_shared<BoundedConfigToml>(app));
   app.allow_config_extras(false);  // a misspelt key is an error naming it, not silently ignored
 }
 

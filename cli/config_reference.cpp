@@ -76,7 +76,9 @@ std::string config_reference(const CommandModel& root) {
          "```\n\n"
          "A complete example: [examples/hitl.toml](examples/hitl.toml). Options that take a list take a TOML\n"
          "array. The unit column gives the unit of a number; a flag is `true` or `false`. A `#` starts a\n"
-         "comment anywhere on a line, inside quotes too, so a value cannot contain one.\n";
+         "comment anywhere on a line, inside quotes too, so a value cannot contain one. A file larger than\n"
+         "1 MiB is refused (an error naming the file and the limit), as are vehicle, world and parameter\n"
+         "files; a trajectory or a dialect may be 16 MiB.\n";
   for (const auto* c : all_commands(root)) {
     std::vector<const OptionModel*> keys;
     for (const auto& o : c->options)

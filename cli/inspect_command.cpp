@@ -72,6 +72,8 @@ class InspectPrinter : public inspect::Inspector::Observer {
     latest_[frame.msgid] = {mavlink::format_message(frame), frame_json(frame, source, t_ns)};
   }
 
+  void on_notice(const std::string& text) override { std::cerr << "hitl inspect: " << text << '\n'; }
+
   void on_tick(const telemetry::TrafficSummary& summary) override {
     if (global_.json) {
       auto j = telemetry::to_json(summary);
@@ -106,10 +108,11 @@ class InspectPrinter : public inspect::Inspector::Observer {
   /// -v: say on stderr when a new sender or message id appears; -vv: every frame.
   void narrate(const mavlink::Frame& frame, const std::string& source) {
     const std::string name = frame.desc ? frame.desc->name : "#" + std::to_string(frame.msgid) + " (unknown id)";
-    if (sources_.insert(source + "/" + std::to_string(frame.sysid) + "/" + std::to_string(frame.compid)).second)
+    // Bounded like the tables: past the bound, nothing new is narrated.
+    if (sources_.size() < telemetry::kMaxSources && sources_.insert(source + "/" + std::to_string(frame.sysid) + "/" + std::to_string(frame.compid)).second)
       std::cerr << "new source " << source << " sysid " << int{frame.sysid} << " compid " << int{frame.compid}
                 << (frame.version == mavlink::Version::V1 ? " (MAVLink 1)" : "") << '\n';
-    if (ids_.insert(frame.msgid).second) std::cerr << "new message " << name << " from " << source << '\n';
+    if (ids_.size() < telemetry::kMaxMessageIds && ids_.insert(frame.msgid).second) std::cerr << "new message " << name << " from " << source << '\n';
     if (global_.verbosity >= 2)
       std::cerr << source << " seq " << int{frame.seq} << " " << mavlink::format_message(frame) << '\n';
   }

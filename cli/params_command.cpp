@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -151,6 +152,15 @@ int push(const GlobalOptions& g, const ParamsOptions& o, Session& s, const std::
 }
 
 int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& action) {
+  // A bad file is refused before anything talks to the board.
+  std::optional<Expected<std::vector<vehicle::Param>>> file;
+  if (action == "load") {
+    file.emplace(vehicle::load_params_file(o.file));
+    if (!*file) {
+      log_error("params", (*file).error().message);
+      return kExitUsage;
+    }
+  }
   auto s = open(g, o);
   if (!s) return kExitFailed;
   if (action == "show" || action == "export") {
@@ -254,14 +264,7 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
     }
     return all_ok ? kExitOk : kExitFailed;
   }
-  if (action == "load") {
-    auto file = vehicle::load_params_file(o.file);
-    if (!file) {
-      log_error("params", file.error().message);
-      return kExitUsage;
-    }
-    return push(g, o, *s, *file, false, "load");
-  }
+  if (action == "load") return push(g, o, *s, **file, false, "load");
   return push(g, o, *s, vehicle::hitl_default_params(), true, "reset");
 }
 

@@ -28,10 +28,10 @@ std::string traffic_table(const telemetry::TrafficSummary& s) {
                  static_cast<unsigned long long>(src.seq.received), static_cast<unsigned long long>(src.seq.lost),
                  100.0 * src.seq.loss_ratio());
   }
-  out += fmt("\n%.1f s  %llu frames in %llu datagrams  crc errors %llu  parse errors %llu  unknown ids %llu  truncated %llu",
+  out += fmt("\n%.1f s  %llu frames in %llu datagrams  crc errors %llu  parse errors %llu  unverified %llu  truncated %llu",
              s.duration_s, static_cast<unsigned long long>(s.frames), static_cast<unsigned long long>(s.datagrams),
              static_cast<unsigned long long>(s.parser.crc_errors), static_cast<unsigned long long>(s.parser.parse_errors),
-             static_cast<unsigned long long>(s.parser.unknown_ids), static_cast<unsigned long long>(s.parser.truncated));
+             static_cast<unsigned long long>(s.parser.unverified), static_cast<unsigned long long>(s.parser.truncated));
   if (s.parser.signature_errors + s.parser.unsigned_rejected + s.parser.bad_incompat_flags > 0)
     out += fmt("  signature errors %llu  unsigned rejected %llu  bad incompat flags %llu",
                static_cast<unsigned long long>(s.parser.signature_errors),
@@ -43,8 +43,8 @@ std::string traffic_table(const telemetry::TrafficSummary& s) {
 std::string traffic_line(const telemetry::TrafficSummary& s) {
   std::string out = fmt("%.1f s  %llu frames", s.duration_s, static_cast<unsigned long long>(s.frames));
   for (const auto& m : s.messages) out += fmt("  %s %.1f Hz", m.name.c_str(), m.recent_rate_hz);
-  out += fmt("  crc %llu  parse %llu  unknown %llu", static_cast<unsigned long long>(s.parser.crc_errors),
-             static_cast<unsigned long long>(s.parser.parse_errors), static_cast<unsigned long long>(s.parser.unknown_ids));
+  out += fmt("  crc %llu  parse %llu  unverified %llu", static_cast<unsigned long long>(s.parser.crc_errors),
+             static_cast<unsigned long long>(s.parser.parse_errors), static_cast<unsigned long long>(s.parser.unverified));
   return out;
 }
 

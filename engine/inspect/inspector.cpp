@@ -73,8 +73,21 @@ std::string Inspector::where() const {
 
 void Inspector::handle(const mavlink::Frame& frame, const std::string& source, int64_t t_ns, Observer& observer) {
   if (counted_out()) return;
-  stats_.on_frame(frame, source, t_ns);
   if (recorder_) recorder_->write(static_cast<uint64_t>(t_ns / 1000), frame.bytes());
+  // An id the message set does not know has no checkable checksum: not a message (counted in the
+  // parser's `unverified`); --dialect makes its ids checkable.
+  if (frame.desc == nullptr) return;
+  switch (stats_.on_frame(frame, source, t_ns)) {
+    case telemetry::TrafficStats::Bound::MessageIds:
+      observer.on_notice("more than " + std::to_string(telemetry::kMaxMessageIds) +
+                         " message ids: the others are counted in untracked_id_frames, not listed");
+      break;
+    case telemetry::TrafficStats::Bound::Sources:
+      observer.on_notice("more than " + std::to_string(telemetry::kMaxSources) +
+                         " sources: the others are counted in untracked_source_frames, not listed");
+      break;
+    case telemetry::TrafficStats::Bound::None: break;
+  }
   if (config_.count > 0 &&
       (config_.count_ids.empty() ||
        std::find(config_.count_ids.begin(), config_.count_ids.end(), frame.msgid) != config_.count_ids.end()))
@@ -88,7 +101,16 @@ void Inspector::send_heartbeat() {
   (void)endpoint_->send({buf.data(), n});  // an unreachable board shows as silence, not as an error
 }
 
-telemetry::TrafficSummary Inspector::summary() const { return stats_.summary(now_ns_, parser_.stats()); }
+telemetry::TrafficSummary Inspector::summary() const {
+  mavlink::ParserStats parser = parser_.stats();
+  // A log's last record cut off by the end of the file (a killed writer) is a truncated frame too,
+  // and bytes between records that are no timestamp + frame are garbage.
+  if (reader_) {
+    parser.truncated += reader_->stats().truncated;
+    parser.garbage_bytes += reader_->stats().skipped_bytes;
+  }
+  return stats_.summary(now_ns_, parser);
+}
 
 Expected<Inspector::EndReason> Inspector::run(const std::atomic<bool>& stop, Observer& observer) {
   auto result = config_.source == InspectConfig::Source::Tlog ? run_tlog(stop, observer) : run_live(stop, observer);
@@ -141,11 +163,14 @@ Expected<Inspector::EndReason> Inspector::run_tlog(const std::atomic<bool>& stop
   auto next_tick = Clock::now() + std::chrono::seconds(1);
   while (!stop.load()) {
     if (!reader_->next(rec)) return EndReason::EndOfLog;
-    const int64_t t = static_cast<int64_t>(rec.time_unix_us) * 1000;
+    // A log's clock is outside input: saturate rather than overflow (a corrupt stamp reads as ~2262).
+    const int64_t t = rec.time_unix_us > static_cast<uint64_t>(INT64_MAX / 1000) ? INT64_MAX
+                                                                                : static_cast<int64_t>(rec.time_unix_us) * 1000;
     if (!started) {
       started = true;
       stats_.restart(t);
-      end_ns = config_.duration_s > 0 ? t + static_cast<int64_t>(config_.duration_s * 1e9) : INT64_MAX;
+      const double end = static_cast<double>(t) + config_.duration_s * 1e9;
+      end_ns = config_.duration_s > 0 && end < 9.2e18 ? static_cast<int64_t>(end) : INT64_MAX;
     }
     if (t > end_ns) return EndReason::Duration;
     now_ns_ = std::max(now_ns_, t);

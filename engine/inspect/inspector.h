@@ -44,6 +44,8 @@ class Inspector {
    public:
     virtual ~Observer() = default;
     virtual void on_frame(const mavlink::Frame& /*frame*/, const std::string& /*source*/, int64_t /*t_unix_ns*/) {}
+    /// Once, when a table that grows with the input (message ids, senders) reaches its bound.
+    virtual void on_notice(const std::string& /*text*/) {}
     /// Once a second of wall time, with the stats so far.
     virtual void on_tick(const telemetry::TrafficSummary& /*summary*/) {}
   };

@@ -1,4 +1,5 @@
 #include "engine/mavlink/dialect_xml.h"
+#include "engine/common/bounded_read.h"
 
 #include <pugixml.hpp>
 
@@ -51,8 +52,10 @@ Status load_file(const std::filesystem::path& path, MessageSet& set, DialectInfo
   const std::string key = ec ? path.string() : canonical.string();
   if (!seen.insert(key).second) return Ok{};
   if (!std::filesystem::exists(path)) return Error{"dialect file '" + path.string() + "' does not exist"};
+  const auto text = read_bounded_file(path.string(), "dialect file", kMaxDialectFileBytes);
+  if (!text) return text.error();
   pugi::xml_document doc;
-  const auto result = doc.load_file(path.c_str());
+  const auto result = doc.load_buffer(text->data(), text->size());
   if (!result)
     return Error{"dialect file '" + path.string() + "' is not valid XML (" + result.description() + " at byte " +
                  std::to_string(result.offset) + ")"};

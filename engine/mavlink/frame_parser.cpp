@@ -35,7 +35,45 @@ bool FrameParser::verify_signature(std::span<const uint8_t> frame, std::size_t s
   return true;
 }
 
-FrameParser::Candidate FrameParser::try_frame(std::span<const uint8_t> d, std::size_t& frame_len) {
+bool FrameParser::checksum_matches(std::span<const uint8_t> d, std::size_t header_len, std::size_t len,
+                                   const MessageDesc& desc) {
+  const uint16_t wire_crc = static_cast<uint16_t>(d[header_len + len] | (d[header_len + len + 1] << 8));
+  return crc_accumulate(desc.crc_extra, crc_x25(d.subspan(1, header_len - 1 + len))) == wire_crc;
+}
+
+FrameParser::Check FrameParser::checked_frame_at(std::span<const uint8_t> d) const {
+  if (d.empty() || (d[0] != kStxV2 && d[0] != kStxV1)) return Check::No;
+  const bool v2 = d[0] == kStxV2;
+  const std::size_t header_len = v2 ? kHeaderLenV2 : kHeaderLenV1;
+  if (d.size() < header_len) return Check::Unknown;
+  const std::size_t len = d[1];
+  const uint32_t msgid = v2 ? (uint32_t{d[7]} | (uint32_t{d[8]} << 8) | (uint32_t{d[9]} << 16)) : d[5];
+  const MessageDesc* desc = messages_->find(msgid);
+  if (desc == nullptr) return Check::No;
+  if (d.size() < header_len + len + kChecksumLen) return Check::Unknown;
+  return checksum_matches(d, header_len, len, *desc) ? Check::Yes : Check::No;
+}
+
+FrameParser::Check FrameParser::framing_is_whole(std::span<const uint8_t> d, std::size_t frame_len, bool final) const {
+  // It ends where the data ends (a datagram's end; a stream waits for the next byte) or where the
+  // next frame starts...
+  if (frame_len == d.size()) {
+    if (!final) return Check::Unknown;
+  } else if (d[frame_len] != kStxV2 && d[frame_len] != kStxV1) {
+    return Check::No;
+  }
+  // ...and it does not cover a frame whose checksum holds (that frame is the real one). A stream
+  // waits until each start byte inside it can be judged.
+  bool unknown = false;
+  for (std::size_t i = 1; i < frame_len; ++i) {
+    const Check inner = checked_frame_at(d.subspan(i));
+    if (inner == Check::Yes) return Check::No;
+    unknown = unknown || inner == Check::Unknown;
+  }
+  return unknown && !final ? Check::Unknown : Check::Yes;
+}
+
+FrameParser::Candidate FrameParser::try_frame(std::span<const uint8_t> d, bool final, std::size_t& frame_len) {
   const bool v2 = d[0] == kStxV2;
   const std::size_t header_len = v2 ? kHeaderLenV2 : kHeaderLenV1;
   if (d.size() < header_len) return Candidate::NeedMore;
@@ -60,10 +98,17 @@ FrameParser::Candidate FrameParser::try_frame(std::span<const uint8_t> d, std::s
   const MessageDesc* desc = messages_->find(msgid);
   const uint16_t wire_crc = static_cast<uint16_t>(d[header_len + len] | (d[header_len + len + 1] << 8));
   if (desc != nullptr) {
-    uint16_t crc = crc_x25(d.subspan(1, header_len - 1 + len));
-    crc = crc_accumulate(desc->crc_extra, crc);
-    if (crc != wire_crc) {
+    if (!checksum_matches(d, header_len, len, *desc)) {
       ++stats_.crc_errors;
+      return Candidate::Reject;
+    }
+  } else {
+    // An id the set does not know: its checksum cannot be checked, so only whole framing vouches for it.
+    const Check whole = framing_is_whole(d, frame_len, final);
+    if (whole == Check::Unknown) return Candidate::NeedMore;
+    ++stats_.unverified;
+    if (whole == Check::No) {
+      ++stats_.unverified_dropped;
       return Candidate::Reject;
     }
   }
@@ -107,7 +152,7 @@ std::size_t FrameParser::process(std::span<const uint8_t> data, bool final, cons
     if (pos >= data.size()) break;
 
     std::size_t frame_len = 0;
-    switch (try_frame(data.subspan(pos), frame_len)) {
+    switch (try_frame(data.subspan(pos), final, frame_len)) {
       case Candidate::Frame:
         in_garbage_ = false;
         ++stats_.frames;

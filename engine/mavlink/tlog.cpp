@@ -76,6 +76,7 @@ bool TlogReader::next(TlogRecord& record) {
       continue;
     }
     if (!fill(8 + len)) {  // the file ends inside this frame
+      ++stats_.truncated;
       stats_.skipped_bytes += buf_.size() - pos_;
       pos_ = buf_.size();
       return false;

@@ -44,6 +44,7 @@ struct TlogRecord {
 struct TlogStats {
   uint64_t records = 0;
   uint64_t skipped_bytes = 0;  ///< bytes that did not form a timestamp + frame (corruption)
+  uint64_t truncated = 0;      ///< a last record cut off by the end of the file (a killed writer)
 };
 
 class TlogReader {

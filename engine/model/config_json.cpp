@@ -1,5 +1,7 @@
 #include "engine/model/config_json.h"
 
+#include "engine/common/bounded_read.h"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -340,7 +342,7 @@ Expected<Config> parse(std::string_view text, std::string_view source_name, Conf
   json root;
   try {
     root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
     return Error{source + ": not valid JSON: " + e.what()};
   }
   if (!root.is_object()) return Error{source + ": must be a JSON object (got " + std::string(root.type_name()) + ")"};
@@ -362,12 +364,8 @@ std::string write(const Config& config, Fields fields) {
   return root.dump(2);
 }
 
-Expected<std::string> read_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return Error{file.string() + ": cannot open for reading"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+Expected<std::string> read_file(const std::filesystem::path& file, const std::string& what) {
+  return read_bounded_file(file.string(), what, kMaxConfigFileBytes);
 }
 
 template <class Config>
@@ -386,7 +384,7 @@ Expected<VehicleConfig> parse_vehicle_config(std::string_view json_text, std::st
   return parse_vehicle_config(json_text, source_name, x500_vehicle_config());
 }
 Expected<VehicleConfig> load_vehicle_config(const std::filesystem::path& file) {
-  Expected<std::string> text = read_file(file);
+  Expected<std::string> text = read_file(file, "vehicle file");
   if (!text) return text.error();
   return parse_vehicle_config(*text, file.string());
 }
@@ -399,7 +397,7 @@ Expected<WorldConfig> parse_world_config(std::string_view json_text, std::string
   return parse_world_config(json_text, source_name, default_world_config());
 }
 Expected<WorldConfig> load_world_config(const std::filesystem::path& file) {
-  Expected<std::string> text = read_file(file);
+  Expected<std::string> text = read_file(file, "world file");
   if (!text) return text.error();
   return parse_world_config(*text, file.string());
 }

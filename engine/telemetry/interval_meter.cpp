@@ -35,17 +35,16 @@ double bucket_value(std::size_t b) {
 
 }  // namespace
 
-IntervalMeter::IntervalMeter() : histogram_(kBuckets, 0) {}
-
 void IntervalMeter::arrival(int64_t t_ns) {
   ++arrivals_;
   if (arrivals_ == 1) {
     first_ns_ = last_ns_ = t_ns;
     return;
   }
-  const int64_t gap_ns = t_ns - last_ns_;
-  last_ns_ = std::max(last_ns_, t_ns);
-  if (gap_ns < 0) return;
+  if (t_ns < last_ns_) return;
+  // Unsigned: any two int64 times (a log's clock can jump by centuries) give a gap without overflow.
+  const uint64_t gap_ns = static_cast<uint64_t>(t_ns) - static_cast<uint64_t>(last_ns_);
+  last_ns_ = t_ns;
   const double gap_us = static_cast<double>(gap_ns) / 1000.0;
   ++gaps_;
   const double delta = gap_us - mean_;
@@ -54,7 +53,18 @@ void IntervalMeter::arrival(int64_t t_ns) {
   if (gaps_ == 1) min_ = max_ = gap_us;
   min_ = std::min(min_, gap_us);
   max_ = std::max(max_, gap_us);
-  ++histogram_[bucket_of(static_cast<uint64_t>(gap_ns * 16 / 1000))];
+  count_bucket(bucket_of(gap_ns / 1000 * 16 + gap_ns % 1000 * 16 / 1000));
+}
+
+void IntervalMeter::count_bucket(std::size_t b) {
+  if (histogram_.empty()) {
+    lowest_bucket_ = b;
+  } else if (b < lowest_bucket_) {
+    histogram_.insert(histogram_.begin(), lowest_bucket_ - b, 0);
+    lowest_bucket_ = b;
+  }
+  if (b - lowest_bucket_ >= histogram_.size()) histogram_.resize(b - lowest_bucket_ + 1, 0);
+  ++histogram_[b - lowest_bucket_];
 }
 
 double IntervalMeter::percentile(double q) const {
@@ -63,7 +73,7 @@ double IntervalMeter::percentile(double q) const {
   uint64_t seen = 0;
   for (std::size_t b = 0; b < histogram_.size(); ++b) {
     seen += histogram_[b];
-    if (seen >= std::max<uint64_t>(rank, 1)) return std::clamp(bucket_value(b) / 16.0, min_, max_);
+    if (seen >= std::max<uint64_t>(rank, 1)) return std::clamp(bucket_value(lowest_bucket_ + b) / 16.0, min_, max_);
   }
   return max_;
 }

@@ -1,7 +1,10 @@
 // Inter-arrival statistics of one stream: count, mean/std (Welford), min/max, and
 // percentiles from a log-linear histogram (256 buckets per octave: ~0.4 % resolution).
+// The histogram holds only the span of buckets the gaps have used (empty until the second
+// arrival, ~1 KB for a steady stream), so a meter per message id stays cheap.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -19,7 +22,6 @@ struct GapSummary {
 
 class IntervalMeter {
  public:
-  IntervalMeter();
   /// Records an arrival at `t_ns`; the first arrival only starts the clock. Arrivals that go back
   /// in time (clock steps) are not counted as gaps.
   void arrival(int64_t t_ns);
@@ -27,9 +29,11 @@ class IntervalMeter {
   int64_t first_ns() const { return first_ns_; }
   int64_t last_ns() const { return last_ns_; }
   uint64_t arrivals() const { return arrivals_; }
+  /// Memory the histogram holds (its cost per stream).
+  std::size_t histogram_bytes() const { return histogram_.capacity() * sizeof(uint32_t); }
 
  private:
-  void add_gap(uint64_t gap_us_x16);
+  void count_bucket(std::size_t bucket);
   double percentile(double q) const;
 
   uint64_t arrivals_ = 0;
@@ -40,7 +44,8 @@ class IntervalMeter {
   double m2_ = 0;
   double min_ = 0;
   double max_ = 0;
-  std::vector<uint32_t> histogram_;
+  std::size_t lowest_bucket_ = 0;    ///< the bucket histogram_[0] counts
+  std::vector<uint32_t> histogram_;  ///< buckets lowest_bucket_ .. the highest used
 };
 
 }  // namespace hitl::telemetry

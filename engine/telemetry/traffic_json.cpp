@@ -13,6 +13,9 @@ nlohmann::json to_json(const TrafficSummary& s) {
   j["garbage_bytes"] = s.parser.garbage_bytes;
   j["truncated"] = s.parser.truncated;
   j["unknown"] = s.parser.unknown_ids;
+  j["unverified"] = s.parser.unverified;
+  j["untracked_id_frames"] = s.untracked_id_frames;
+  j["untracked_source_frames"] = s.untracked_source_frames;
   j["bad_incompat_flags"] = s.parser.bad_incompat_flags;
   j["signature_errors"] = s.parser.signature_errors;
   j["unsigned_rejected"] = s.parser.unsigned_rejected;

@@ -12,15 +12,27 @@ const MessageSummary* TrafficSummary::message(std::string_view name) const {
 
 void TrafficStats::restart(int64_t start_ns) { *this = TrafficStats(start_ns); }
 
-void TrafficStats::on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns) {
+TrafficStats::Bound TrafficStats::on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns) {
   ++frames_;
-  auto& m = meters_[frame.msgid];
-  if (m.count == 0) m.name = frame.desc ? frame.desc->name : "#" + std::to_string(frame.msgid);
-  ++m.count;
-  ++m.window_count;
-  m.bytes += frame.raw_len;
-  m.gaps.arrival(t_ns);
-  sources_[{source, frame.sysid, frame.compid}].observe(frame.seq);
+  Bound hit = Bound::None;
+  auto meter = meters_.find(frame.msgid);
+  if (meter == meters_.end() && meters_.size() < kMaxMessageIds) meter = meters_.try_emplace(frame.msgid).first;
+  if (meter != meters_.end()) {
+    auto& m = meter->second;
+    if (m.count == 0) m.name = frame.desc ? frame.desc->name : "#" + std::to_string(frame.msgid);
+    ++m.count;
+    ++m.window_count;
+    m.bytes += frame.raw_len;
+    m.gaps.arrival(t_ns);
+  } else if (untracked_id_frames_++ == 0) {
+    hit = Bound::MessageIds;
+  }
+  auto key = std::make_tuple(source, frame.sysid, frame.compid);
+  auto tracker = sources_.find(key);
+  if (tracker == sources_.end() && sources_.size() < kMaxSources) tracker = sources_.try_emplace(std::move(key)).first;
+  if (tracker != sources_.end()) tracker->second.observe(frame.seq);
+  else if (untracked_source_frames_++ == 0 && hit == Bound::None) hit = Bound::Sources;
+  return hit;
 }
 
 void TrafficStats::roll(int64_t now_ns) {
@@ -37,6 +49,8 @@ TrafficSummary TrafficStats::summary(int64_t now_ns, const mavlink::ParserStats&
   s.duration_s = std::max(0.0, static_cast<double>(now_ns - start_ns_) * 1e-9);
   s.frames = frames_;
   s.datagrams = datagrams_;
+  s.untracked_id_frames = untracked_id_frames_;
+  s.untracked_source_frames = untracked_source_frames_;
   s.parser = parser;
   for (const auto& [id, m] : meters_) {
     MessageSummary ms;

@@ -2,6 +2,7 @@
 // inter-arrival gaps, bytes, sequence loss, and the parser's error counters.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -33,10 +34,16 @@ struct SourceSummary {
   mavlink::SequenceStats seq;
 };
 
+/// Bounds on the tables that grow with outside input (distinct ids, distinct senders).
+inline constexpr std::size_t kMaxMessageIds = 1024;  ///< more than any dialect defines
+inline constexpr std::size_t kMaxSources = 256;      ///< (address, sysid, compid) triples
+
 struct TrafficSummary {
   double duration_s = 0;
   uint64_t frames = 0;
   uint64_t datagrams = 0;
+  uint64_t untracked_id_frames = 0;      ///< frames of ids past kMaxMessageIds: counted, not in `messages`
+  uint64_t untracked_source_frames = 0;  ///< frames of senders past kMaxSources: counted, not in `sources`
   mavlink::ParserStats parser;
   std::vector<MessageSummary> messages;  ///< by id
   std::vector<SourceSummary> sources;
@@ -51,7 +58,9 @@ class TrafficStats {
   void restart(int64_t start_ns);
 
   void on_datagram() { ++datagrams_; }
-  void on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns);
+  enum class Bound { None, MessageIds, Sources };
+  /// Counts a frame; returns which table bound this frame hit for the first time (None otherwise).
+  Bound on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns);
   /// Closes the current rate window at `now_ns` (recent_rate_hz covers it) and opens the next.
   void roll(int64_t now_ns);
 
@@ -71,6 +80,8 @@ class TrafficStats {
   int64_t window_start_ns_;
   uint64_t frames_ = 0;
   uint64_t datagrams_ = 0;
+  uint64_t untracked_id_frames_ = 0;
+  uint64_t untracked_source_frames_ = 0;
   std::map<uint32_t, Meter> meters_;
   std::map<std::tuple<std::string, uint8_t, uint8_t>, mavlink::SequenceTracker> sources_;
 };

@@ -5,49 +5,40 @@
 #include <optional>
 
 #include "engine/mavlink/enums.h"
+#include "engine/vehicle/board_replies.h"
 
 namespace hitl::vehicle {
 namespace {
 
 namespace msg = mavlink::msg;
 
-std::string name_of(const std::array<char, 16>& id) { return std::string(id.data(), strnlen(id.data(), id.size())); }
-
 void put_name(std::array<char, 16>& id, const std::string& name) {
   id.fill('\0');
   std::memcpy(id.data(), name.data(), std::min<std::size_t>(name.size(), id.size()));
 }
 
-ParamValue value_of(const msg::ParamValue& v) {
-  return decode_param_float(v.param_value, v.param_type == mavlink::kMavParamTypeInt32 ? ParamType::Int32 : ParamType::Real32);
-}
-
 }  // namespace
 
 Expected<std::vector<Param>> ParamClient::download(const std::function<void(std::size_t, std::size_t)>& progress) {
-  std::map<uint16_t, Param> got;
-  std::optional<uint16_t> total;
+  ParamCollector got;
   auto take = [&](const mavlink::Frame& f) {
     if (!f.is<msg::ParamValue>()) return false;
-    const auto v = f.as<msg::ParamValue>();
-    total = v.param_count;
-    if (v.param_index < v.param_count && !got.count(v.param_index)) {
-      got[v.param_index] = Param{name_of(v.param_id), value_of(v)};
-      if (progress) progress(got.size(), *total);
-    }
-    return total && got.size() == *total;
+    const std::size_t before = got.received();
+    const bool done = got.take(f.as<msg::ParamValue>());
+    if (progress && got.received() > before) progress(got.received(), *got.total());
+    return done;
   };
   msg::ParamRequestList list;
   list.target_system = link_.target_sysid();
   list.target_component = link_.target_compid();
-  for (int attempt = 0; attempt < kRetries && !total; ++attempt) {
+  for (int attempt = 0; attempt < kRetries && !got.total(); ++attempt) {
     link_.send(list);
     link_.wait(kTimeout_s * 2, take);  // until every index arrived, or the burst went quiet
   }
-  if (!total) return Error{"no PARAM_VALUE in answer to PARAM_REQUEST_LIST"};
-  for (int round = 0; round < kRetries && got.size() < *total; ++round) {
-    for (uint16_t i = 0; i < *total; ++i) {
-      if (got.count(i)) continue;
+  if (!got.total()) return Error{"no PARAM_VALUE in answer to PARAM_REQUEST_LIST"};
+  for (int round = 0; round < kRetries && got.received() < *got.total(); ++round) {
+    for (uint16_t i = 0; i < *got.total(); ++i) {
+      if (got.has(i)) continue;
       msg::ParamRequestRead read;
       read.target_system = link_.target_sysid();
       read.target_component = link_.target_compid();
@@ -56,13 +47,10 @@ Expected<std::vector<Param>> ParamClient::download(const std::function<void(std:
     }
     link_.wait(kTimeout_s, take);
   }
-  if (got.size() < *total)
-    return Error{"received " + std::to_string(got.size()) + " of " + std::to_string(*total) + " parameters after " +
+  if (got.received() < *got.total())
+    return Error{"received " + std::to_string(got.received()) + " of " + std::to_string(*got.total()) + " parameters after " +
                  std::to_string(kRetries) + " rounds of re-requests"};
-  std::vector<Param> out;
-  out.reserve(got.size());
-  for (auto& [i, p] : got) out.push_back(std::move(p));
-  return out;
+  return got.params();
 }
 
 Expected<ParamValue> ParamClient::get(const std::string& name) {
@@ -77,8 +65,8 @@ Expected<ParamValue> ParamClient::get(const std::string& name) {
     link_.wait(kTimeout_s, [&](const mavlink::Frame& f) {
       if (!f.is<msg::ParamValue>()) return false;
       const auto v = f.as<msg::ParamValue>();
-      if (name_of(v.param_id) != name) return false;
-      value = value_of(v);
+      if (param_name(v.param_id) != name) return false;
+      value = param_value_of(v);
       return true;
     });
   }
@@ -99,8 +87,8 @@ Expected<ParamValue> ParamClient::set(const std::string& name, const ParamValue&
     link_.wait(kTimeout_s, [&](const mavlink::Frame& f) {
       if (!f.is<msg::ParamValue>()) return false;
       const auto v = f.as<msg::ParamValue>();
-      if (name_of(v.param_id) != name) return false;
-      echo = value_of(v);
+      if (param_name(v.param_id) != name) return false;
+      echo = param_value_of(v);
       return true;
     });
   }

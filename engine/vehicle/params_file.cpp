@@ -1,4 +1,5 @@
 #include "engine/vehicle/params_file.h"
+#include "engine/common/bounded_read.h"
 
 #include <cmath>
 #include <cstdio>
@@ -71,11 +72,9 @@ Expected<std::vector<Param>> parse_params(std::string_view text, std::string_vie
 }
 
 Expected<std::vector<Param>> load_params_file(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) return Error{"cannot read parameter file '" + path + "': " + std::strerror(errno)};
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return parse_params(ss.str(), path);
+  auto text = read_bounded_file(path, "parameter file", kMaxConfigFileBytes);
+  if (!text) return text.error();
+  return parse_params(*text, path);
 }
 
 std::string format_params(const std::vector<Param>& params, uint8_t sysid, uint8_t compid) {

@@ -1,12 +1,15 @@
 #include "engine/vehicle/trajectory.h"
+#include "engine/common/bounded_read.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 namespace hitl::vehicle {
 
@@ -16,12 +19,25 @@ double wrap_pi(double a) {
   return a - M_PI;
 }
 
+namespace {
+constexpr double kMaxTime_s = 86400;         ///< one day
+constexpr double kMaxHorizontal_m = 10000;  ///< x, y from home
+constexpr double kMaxHeight_m = 1000;       ///< z above home
+constexpr double kMaxYaw_rad = 100;         ///< unwrapped yaw (about 16 turns)
+
+std::string compact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+}  // namespace
+
 Expected<Trajectory> Trajectory::parse(std::string_view text, std::string_view source) {
   const std::string src(source);
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
     return Error{src + ": not valid JSON (" + e.what() + ")"};
   }
   if (!j.is_object() || !j.contains("waypoints") || !j["waypoints"].is_array())
@@ -51,6 +67,17 @@ Expected<Trajectory> Trajectory::parse(std::string_view text, std::string_view s
                     number("z", wp.p_ENU_m[2], true), number("yaw", wp.yaw_ENU_rad, false)})
       if (!st) return st.error();
     if (wp.t_s < 0) return Error{where + ".t: must be >= 0 (got " + std::to_string(wp.t_s) + ")"};
+    // Physical limits: a flight of at most a day within 10 km of home and 1 km up.
+    if (wp.t_s > kMaxTime_s)
+      return Error{where + ".t: must be <= " + std::to_string(static_cast<int>(kMaxTime_s)) + " s (got " + compact(wp.t_s) + ")"};
+    const std::tuple<const char*, double, double, const char*> limits[] = {{"x", wp.p_ENU_m[0], kMaxHorizontal_m, "m"},
+                                                                           {"y", wp.p_ENU_m[1], kMaxHorizontal_m, "m"},
+                                                                           {"z", wp.p_ENU_m[2], kMaxHeight_m, "m"},
+                                                                           {"yaw", wp.yaw_ENU_rad, kMaxYaw_rad, "rad"}};
+    for (const auto& [key, value, limit, unit] : limits)
+      if (std::abs(value) > limit)
+        return Error{where + "." + key + ": must be within +-" + std::to_string(static_cast<int>(limit)) + " " + unit +
+                     " (got " + compact(value) + ")"};
     if (!tr.waypoints_.empty() && wp.t_s <= tr.waypoints_.back().t_s)
       return Error{where + ".t: times must increase (" + std::to_string(wp.t_s) + " after " +
                    std::to_string(tr.waypoints_.back().t_s) + ")"};
@@ -61,11 +88,9 @@ Expected<Trajectory> Trajectory::parse(std::string_view text, std::string_view s
 }
 
 Expected<Trajectory> Trajectory::load(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) return Error{"cannot read trajectory '" + path + "': " + std::strerror(errno)};
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return parse(ss.str(), path);
+  auto text = read_bounded_file(path, "trajectory", kMaxTrajectoryFileBytes);
+  if (!text) return text.error();
+  return parse(*text, path);
 }
 
 TrajectoryReference Trajectory::at(double t_s) const {

@@ -1,4 +1,5 @@
 #include "target/vio-server/vio_server_config.h"
+#include "engine/common/bounded_read.h"
 
 #include <arpa/inet.h>
 
@@ -51,7 +52,7 @@ Expected<VioServerConfig> parse_with(std::string_view text, std::string_view sou
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
     return Error{std::string(source) + ": not valid JSON (" + e.what() + ")"};
   }
   return apply(doc, std::move(base), source);
@@ -85,11 +86,9 @@ Expected<LoadedConfig> load_or_create_config(const std::string& path) {
     return LoadedConfig{default_config(), true};
   }
   if (std::filesystem::is_directory(path, ec)) return Error{path + " is a directory, not a configuration file"};
-  std::ifstream in(path);
-  if (!in) return Error{"cannot read " + path + ": " + std::strerror(errno)};
-  std::ostringstream text;
-  text << in.rdbuf();
-  auto config = parse_config(text.str(), path);
+  auto text = read_bounded_file(path, "configuration file", kMaxConfigFileBytes);
+  if (!text) return text.error();
+  auto config = parse_config(*text, path);
   if (!config.ok()) return config.error();
   return LoadedConfig{config.value(), false};
 }

@@ -149,7 +149,7 @@ TEST(Config, LoadsFilesAndNamesMissingOnes) {
   std::remove(path.c_str());
   auto missing = load_vehicle_config("/nonexistent/vehicle.json");
   ASSERT_FALSE(missing.ok());
-  EXPECT_EQ(missing.error().message, "/nonexistent/vehicle.json: cannot open for reading");
+  EXPECT_EQ(missing.error().message, "cannot read vehicle file '/nonexistent/vehicle.json': No such file or directory");
 }
 
 TEST(Config, ValidateCatchesConfigsBuiltInCode) {

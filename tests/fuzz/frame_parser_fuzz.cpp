@@ -109,7 +109,9 @@ void check_stats(const ParserStats& s, const Seen& seen, std::size_t fed, bool d
   if (!keyed) FUZZ_CHECK(s.signature_errors == 0 && s.unsigned_rejected == 0);
   if (!datagram) FUZZ_CHECK(s.truncated == 0);  // a stream waits for the rest of a frame
   // Each rejection or truncation drops at least one byte as garbage.
-  FUZZ_CHECK(s.crc_errors + s.bad_incompat_flags + s.truncated <= s.garbage_bytes);
+  FUZZ_CHECK(s.crc_errors + s.bad_incompat_flags + s.truncated + s.unverified_dropped <= s.garbage_bytes);
+  // Every unknown-id frame delivered or dropped was an unverified candidate.
+  FUZZ_CHECK(s.unknown_ids + s.unverified_dropped <= s.unverified);
 }
 
 void run(std::span<const uint8_t> data, bool keyed, std::size_t split, std::size_t chunk) {

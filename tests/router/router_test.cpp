@@ -53,6 +53,33 @@ class RouterTest : public ::testing::Test {
   mavlink::FrameParser parser_{set_};
 };
 
+// Issue 19: an id hitl does not know has no checkable checksum. As mavlink-router does, it is
+// forwarded only when its framing is whole; junk that looks like one is never forwarded.
+TEST_F(RouterTest, UnknownIdIsForwardedOnlyWhenItsFramingIsWhole) {
+  Router r;
+  Sink a, b;
+  const auto la = r.add_link("a", a.sender());
+  r.add_link("b", b.sender());
+  mavlink::FrameEncoder enc(1, 1);
+  mavlink::FrameBuffer buf;
+  const std::vector<uint8_t> payload = {1, 2, 3, 4, 5};
+  const std::size_t n = enc.encode_raw(60001, 0, payload, 5, buf);
+  const std::vector<uint8_t> whole(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(n));
+  auto route_datagram = [&](const std::vector<uint8_t>& d) {
+    parser_.parse_datagram(d, [&](const mavlink::Frame& f) { r.route(f, la, 0.0); });
+  };
+  route_datagram(whole);  // alone in its datagram: whole
+  ASSERT_EQ(b.frames.size(), 1u);
+  EXPECT_EQ(b.frames[0], whole);
+  auto followed = whole;
+  followed.insert(followed.end(), {0x11, 0x22, 0x33});  // junk after it: not whole
+  route_datagram(followed);
+  auto stray = std::vector<uint8_t>{0xFD, 40, 0, 0, 0, 1, 1, 0x61, 0xEA, 0};  // a stray header
+  stray.resize(100, 0x5A);
+  route_datagram(stray);
+  EXPECT_EQ(b.frames.size(), 1u);
+}
+
 TEST_F(RouterTest, BroadcastGoesEverywhereButBack) {
   Router r;
   Sink a, b, c;

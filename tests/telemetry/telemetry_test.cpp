@@ -31,6 +31,36 @@ TEST(IntervalMeter, MeanStdMaxAndPercentilesOfKnownGaps) {
   EXPECT_GT(s.std_us, 100.0);
 }
 
+TEST(IntervalMeter, HugeGapsAndExtremeClocksNeitherOverflowNorCrash) {
+  // Issue 19: two tlog records 6e14 us apart overflowed gap_ns * 16 and wrote out of bounds.
+  telemetry::IntervalMeter m;
+  m.arrival(0);
+  m.arrival(600'000'000'000'000'000);  // 6e14 us later
+  m.arrival(INT64_MAX);
+  m.arrival(INT64_MIN);  // back in time: not a gap
+  const auto s = m.summary();
+  EXPECT_EQ(s.count, 2u);
+  EXPECT_NEAR(s.min_us, 6e14, 1e3);
+  EXPECT_NEAR(s.max_us, static_cast<double>(INT64_MAX) / 1000.0 - 6e14, 1e6);
+  EXPECT_GE(s.p99_us, s.min_us);
+  EXPECT_LE(s.p99_us, s.max_us);
+
+  telemetry::IntervalMeter from_the_bottom;
+  from_the_bottom.arrival(INT64_MIN);
+  from_the_bottom.arrival(INT64_MAX);  // the widest gap two int64 times can have
+  EXPECT_NEAR(from_the_bottom.summary().max_us, 1.8446744e16, 1e10);
+}
+
+TEST(IntervalMeter, HistogramHoldsOnlyTheBucketsItUses) {
+  telemetry::IntervalMeter one;
+  one.arrival(0);
+  EXPECT_EQ(one.histogram_bytes(), 0u);  // a message seen once costs no histogram
+  telemetry::IntervalMeter steady;
+  for (int64_t i = 0; i < 2000; ++i) steady.arrival(i * 4'000'000 + (i % 7) * 50'000);
+  EXPECT_LT(steady.histogram_bytes(), 2048u);
+  EXPECT_NEAR(steady.summary().p50_us, 4000.0, 400.0);
+}
+
 TEST(TrafficStats, RatesBytesAndSourceLoss) {
   const auto set = mavlink::MessageSet::compiled();
   mavlink::FrameParser parser(set);
@@ -56,6 +86,32 @@ TEST(TrafficStats, RatesBytesAndSourceLoss) {
   // A stream that stopped: its rate falls as time goes on.
   const auto later = stats.summary(3'000'000'000, parser.stats());
   EXPECT_LT(later.messages[0].rate_hz, 100.0);
+}
+
+TEST(TrafficStats, TablesAreBoundedAndSayOnceWhenFull) {
+  // Issue 19: every distinct id cost ~44 KB and the tables grew without end.
+  telemetry::TrafficStats stats(0);
+  mavlink::Frame f;
+  int id_bounds = 0, source_bounds = 0;
+  for (uint32_t i = 0; i < 5000; ++i) {
+    f.msgid = 100000 + i;
+    f.sysid = static_cast<uint8_t>(i);
+    f.compid = static_cast<uint8_t>(i >> 8);
+    switch (stats.on_frame(f, "127.0.0.1:1", int64_t{i} * 1000)) {
+      case telemetry::TrafficStats::Bound::MessageIds: ++id_bounds; break;
+      case telemetry::TrafficStats::Bound::Sources: ++source_bounds; break;
+      case telemetry::TrafficStats::Bound::None: break;
+    }
+  }
+  const auto s = stats.summary(5'000'000, {});
+  EXPECT_EQ(s.frames, 5000u);
+  EXPECT_EQ(s.messages.size(), telemetry::kMaxMessageIds);
+  EXPECT_EQ(s.untracked_id_frames, 5000u - telemetry::kMaxMessageIds);
+  EXPECT_EQ(s.sources.size(), telemetry::kMaxSources);
+  EXPECT_EQ(s.untracked_source_frames, 5000u - telemetry::kMaxSources);
+  EXPECT_EQ(id_bounds, 1);  // one message per bound
+  EXPECT_EQ(source_bounds, 1);
+  EXPECT_EQ(telemetry::to_json(s)["untracked_id_frames"], 5000u - telemetry::kMaxMessageIds);
 }
 
 TEST(Expectations, ParseAndJudge) {

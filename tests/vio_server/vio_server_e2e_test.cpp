@@ -406,6 +406,11 @@ TEST(VioServerE2E, BadInputIsAClearErrorAndANonZeroExit) {
     EXPECT_EQ(p.wait(20s), 2);
     EXPECT_NE(p.err().find("cannot create /proc/hitl-no-such"), std::string::npos) << p.err();
   }
+  {  // an endless file: a named error with the limit, not a hang (issue 19)
+    Process p({HITL_VIO_SERVER_BINARY, "-c", "/dev/zero"});
+    EXPECT_EQ(p.wait(20s), 2);
+    EXPECT_NE(p.err().find("'/dev/zero' is larger than 1 MiB"), std::string::npos) << p.err();
+  }
   {
     Process p({HITL_VIO_SERVER_BINARY, "--frobnicate"});
     EXPECT_EQ(p.wait(20s), 2);

@@ -1,0 +1,83 @@
+// Issue 19, files from outside through the real binary: endless or huge files, values past any
+// physical limit, and options a user can get wrong give a named error quickly, never a hang.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tests/support/process.h"
+
+namespace hitl {
+namespace {
+
+using namespace std::chrono_literals;
+
+// Endless or huge files as inputs: a named error saying the limit, quickly (a 2 GB read before).
+TEST(InputFilesE2E, EndlessFilesAreRefusedWithTheLimitNamed) {
+  const std::string zero = "/dev/zero";
+  const std::vector<std::vector<std::string>> commands = {
+      {"sim", "-t", zero, "--duration", "1"},
+      {"fly", "trajectory", zero},
+      {"demo", "-t", zero},
+      {"sim", "--vehicle", zero, "--duration", "1"},
+      {"sim", "--world", zero, "--duration", "1"},
+      {"--config", zero, "inspect", "--tlog", zero},
+      {"params", "load", zero},
+      {"--dialect", zero, "inspect", "--tlog", zero},
+  };
+  for (const auto& c : commands) {
+    auto r = test::run_hitl(c, 30s);
+    std::string line;
+    for (const auto& a : c) line += a + " ";
+    EXPECT_EQ(r.exit_code, 2) << line << r.err;
+    EXPECT_NE(r.err.find("/dev/zero' is larger than"), std::string::npos) << line << r.err;
+    EXPECT_NE(r.err.find("MiB, the limit for a"), std::string::npos) << line << r.err;
+  }
+}
+
+TEST(InputFilesE2E, TrajectoryValuesBeyondPhysicalLimitsAreRefusedNamingTheKey) {
+  const auto dir = test::temp_dir();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"waypoints":[{"t":0,"x":1e308,"y":0,"z":2}]})", "waypoints[0].x: must be within +-10000 m (got 1e+308)"},
+      {R"({"waypoints":[{"t":0,"x":0,"y":0,"z":2},{"t":1e300,"x":0,"y":0,"z":2}]})", "waypoints[1].t: must be <= 86400 s"},
+      {R"({"waypoints":[{"t":0,"x":0,"y":-2e4,"z":2}]})", "waypoints[0].y: must be within +-10000 m"},
+      {R"({"waypoints":[{"t":0,"x":0,"y":0,"z":5000}]})", "waypoints[0].z: must be within +-1000 m"},
+      {R"({"waypoints":[{"t":0,"x":0,"y":0,"z":2,"yaw":1e9}]})", "waypoints[0].yaw: must be within +-100 rad"},
+  };
+  int i = 0;
+  for (const auto& [text, message] : cases) {
+    const auto path = dir + "/t" + std::to_string(i++) + ".json";
+    std::ofstream(path) << text;
+    auto r = test::run_hitl({"sim", "-t", path, "--duration", "1"}, 30s);
+    EXPECT_EQ(r.exit_code, 2) << text << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << text << r.err;
+  }
+}
+
+// Found by the fuzzers: a number past a double's range (1e400) threw out of the JSON parser and
+// aborted hitl (SIGABRT).
+TEST(InputFilesE2E, NumbersPastADoublesRangeAreAnErrorNotAnAbort) {
+  const auto dir = test::temp_dir();
+  std::ofstream(dir + "/t.json") << R"({"waypoints":[{"t":0,"x":1e400,"y":0,"z":2}]})";
+  std::ofstream(dir + "/v.json") << R"({"mass_kg": 1e400})";
+  std::ofstream(dir + "/w.json") << R"({"home": {"lat_deg": -1e400}})";
+  for (const auto& c : std::vector<std::vector<std::string>>{{"sim", "-t", dir + "/t.json", "--duration", "1"},
+                                                             {"sim", "--vehicle", dir + "/v.json", "--duration", "1"},
+                                                             {"sim", "--world", dir + "/w.json", "--duration", "1"}}) {
+    auto r = test::run_hitl(c, 30s);
+    EXPECT_EQ(r.exit_code, 2) << c[2] << r.err;
+    EXPECT_NE(r.err.find("number overflow"), std::string::npos) << c[2] << r.err;
+  }
+}
+
+TEST(InputFilesE2E, NegativeSeedIsRefused) {
+  auto r = test::run_hitl({"sim", "--seed", "-1", "--duration", "1"}, 30s);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--seed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("must be a whole number"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace hitl

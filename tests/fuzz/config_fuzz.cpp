@@ -1,0 +1,42 @@
+// libFuzzer target for the configuration files people edit by hand: vehicle and world JSON
+// (parsed over the x500 and the default world, then validated) and the TOML of `--config`
+// (CLI11's reader, as hitl runs it). The first byte picks the parser, the rest is the file.
+#include <CLI/CLI.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <sstream>
+#include <string_view>
+
+#include "engine/model/config_json.h"
+#include "tests/fuzz/fuzz_check.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, std::size_t size) {
+  if (size == 0) return 0;
+  const std::string_view text(reinterpret_cast<const char*>(bytes + 1), size - 1);
+  switch (bytes[0] % 3) {
+    case 0: {
+      auto v = hitl::model::parse_vehicle_config(text, "vehicle.json");
+      if (v) FUZZ_CHECK(hitl::model::validate(*v).ok());
+      else FUZZ_CHECK(!v.error().message.empty());
+      break;
+    }
+    case 1: {
+      auto w = hitl::model::parse_world_config(text, "world.json");
+      if (w) FUZZ_CHECK(hitl::model::validate(*w).ok());
+      else FUZZ_CHECK(!w.error().message.empty());
+      break;
+    }
+    default: {
+      std::istringstream in{std::string(text)};
+      try {
+        CLI::ConfigTOML toml;
+        const auto items = toml.from_config(in);
+        for (const auto& item : items) FUZZ_CHECK(item.name.size() <= text.size() + 1);
+      } catch (const CLI::Error&) {
+        // a refused file is an answer
+      }
+    }
+  }
+  return 0;
+}
