@@ -2,18 +2,22 @@
 // loopback ports) and the simulator in lockstep fly docs/examples/square.json (takeoff, a 5 m
 // square, land), then a short report: tracking error, rates achieved, the board's estimate
 // against the simulator's truth. No board, no network, no configuration. Ctrl-C stops it all.
+// --tui: the sim dashboard (docs/tui.md) on the flight, in real time unless --speed says otherwise.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <mutex>
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/session_dashboard.h"
 #include "engine/hil/session.h"
 #include "engine/model/x500_defaults.h"
 #include "engine/net/udp_endpoint.h"
 #include "engine/vehicle/telemetry_feed.h"
 #include "engine/vehicle/trajectory.h"
 #include "target/emulator/board.h"
+#include "tui/terminal.h"
 
 namespace hitl::cli {
 
@@ -24,6 +28,8 @@ namespace {
 struct DemoOptions {
   std::string trajectory_file;  ///< empty: the compiled-in square
   double speed = 0;             ///< 0: as fast as lockstep allows
+  bool speed_given = false;     ///< --speed on the command line (--tui otherwise flies in real time)
+  bool tui = false;             ///< --tui: the sim dashboard on the demo
   vehicle::StickMode mode = vehicle::StickMode::Velocity;
 };
 
@@ -37,15 +43,27 @@ Expected<uint16_t> free_port() {
   return ep->local_address().port();
 }
 
+/// The emulated board's events: on stderr, or in the dashboard's messages panel while it is shown.
 class BoardEvents : public target::Board::Observer {
  public:
   explicit BoardEvents(const GlobalOptions& g) : g_(g) {}
   void on_event(const target::BoardEvent& e) override {
-    if (e.warning || g_.verbosity > 0) std::cerr << "hitl demo: board: " << e.text << '\n';
+    if (!e.warning && g_.verbosity == 0) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (dashboard_ != nullptr)
+      dashboard_->note(e.warning ? tui::Severity::Warning : tui::Severity::Info, "board: " + e.text);
+    else
+      std::cerr << "hitl demo: board: " << e.text << '\n';
+  }
+  void attach(tui::SimDashboard* dashboard) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    dashboard_ = dashboard;
   }
 
  private:
   const GlobalOptions& g_;
+  std::mutex mutex_;
+  tui::SimDashboard* dashboard_ = nullptr;
 };
 
 class SessionEvents : public hil::Session::Observer {
@@ -71,7 +89,15 @@ double per_sim_second(const std::map<std::string, hil::StreamCount>& counts, con
   return it == counts.end() || sim_s <= 0 ? 0.0 : static_cast<double>(it->second.count) / sim_s;
 }
 
-int run_demo(const GlobalOptions& g, const DemoOptions& o) {
+int run_demo(const GlobalOptions& g, DemoOptions o) {
+  if (o.tui) {
+    if (auto usable = tui::terminal_usable(); !usable) {
+      std::cerr << "hitl demo: --tui: " << usable.error().message << "; showing the status lines instead\n";
+      o.tui = false;
+    } else if (!o.speed_given) {
+      o.speed = 1;  // to be watched: real time
+    }
+  }
   auto trajectory = o.trajectory_file.empty() ? vehicle::Trajectory::parse(kSquareTrajectory, "docs/examples/square.json")
                                               : vehicle::Trajectory::load(o.trajectory_file);
   if (!trajectory) {
@@ -142,8 +168,17 @@ int run_demo(const GlobalOptions& g, const DemoOptions& o) {
   vehicle::TelemetryFeed feed(link, vehicle::dashboard_streams(), [](mavlink::MavSeverity, const std::string&) {},
                               hil::kSimulatorSystemId);
 
-  SessionEvents events(g);
-  auto end = (*sim)->run(stop, events);
+  Expected<hil::Session::EndReason> end = Error{"not run"};
+  if (o.tui) {
+    tui::SimDashboardConfig dc;
+    dc.title = "hitl demo";
+    dc.no_trajectory_hint = "the demo flies its trajectory by itself";
+    end = run_session_with_dashboard(g, "demo", **sim, session, dc,
+                                     [&board_events](tui::SimDashboard* d) { board_events.attach(d); });
+  } else {
+    SessionEvents events(g);
+    end = (*sim)->run(stop, events);
+  }
   const auto estimate = feed.snapshot();
   feed.stop();
   stop_board = true;
@@ -211,8 +246,15 @@ void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
                                                                                   {"attitude", vehicle::StickMode::Attitude}}))
       ->default_str("velocity");
+  auto* speed = sub->get_option("--speed");
+  sub->add_flag("--tui", o->tui,
+                "Watch it on the sim dashboard (docs/tui.md), in real time unless --speed is given; the report "
+                "follows when the flight ends or on q. Without a terminal: the status lines");
   sub->footer("Exit: 0 when the trajectory was flown and the vehicle landed and disarmed, 1 otherwise.");
-  sub->callback([&options, &state, o]() { state.exit_code = run_demo(options, *o); });
+  sub->callback([&options, &state, o, speed]() {
+    o->speed_given = speed->count() > 0;
+    state.exit_code = run_demo(options, *o);
+  });
 }
 
 }  // namespace hitl::cli

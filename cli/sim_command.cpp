@@ -1,9 +1,7 @@
 // hitl sim: the Simbody x500 bridged to a flight stack over MAVLink (replaces the spec's
 // Gazebo + mavlink_hitl_gazebosim + hitl-gz-start.sh).
-#include <atomic>
 #include <cstdio>
 #include <iostream>
-#include <thread>
 #include <map>
 #include <memory>
 
@@ -11,14 +9,12 @@
 
 #include "cli/adb_options.h"
 #include "cli/commands.h"
+#include "cli/session_dashboard.h"
 #include "engine/hil/session.h"
 #include "engine/net/socket_address.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
 #include "engine/model/x500_defaults.h"
-#include "tui/command_runner.h"
-#include "tui/draw.h"
-#include "tui/sim_dashboard.h"
 #include "tui/terminal.h"
 
 namespace hitl::cli {
@@ -166,45 +162,6 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
                 s.trajectory_rms_m, s.trajectory_max_m, static_cast<unsigned long long>(s.trajectory_samples));
 }
 
-const char* end_name(hil::Session::EndReason r) {
-  switch (r) {
-    case hil::Session::EndReason::Duration: return "duration";
-    case hil::Session::EndReason::Stopped: return "stopped";
-    case hil::Session::EndReason::FlightStackGone: return "flight_stack_gone";
-    case hil::Session::EndReason::TrajectoryDone: return "trajectory_done";
-    case hil::Session::EndReason::TrajectoryFailed: return "trajectory_failed";
-  }
-  return "?";
-}
-
-/// --tui: the session on its own thread, the dashboard on this one; either ending ends both.
-Expected<hil::Session::EndReason> run_with_dashboard(const GlobalOptions& global, hil::Session& session, const SimOptions& opt) {
-  tui::SimDashboardConfig dc;
-  dc.trajectory_file = opt.trajectory_file;
-  dc.trajectory_mode = vehicle::to_string(opt.session.trajectory_mode);
-  if (auto exe = tui::own_executable()) dc.hitl_binary = *exe;
-  tui::SimDashboard dashboard(session, opt.session, dc);
-  std::atomic<bool> stop{false};
-  Expected<hil::Session::EndReason> end = Error{"not run"};
-  std::thread loop([&] {
-    end = session.run(stop, dashboard);
-    dashboard.mark_finished(end ? std::string("the session ended (") + end_name(*end) + ")" : "error: " + end.error().message);
-  });
-  auto shown = tui::run_dashboard(dashboard, &dashboard);
-  stop.store(true);
-  loop.join();
-  dashboard.shutdown();
-  if (!shown) {
-    log_error("sim", "--tui: " + shown.error().message);
-    return end;
-  }
-  if (shown->reason == tui::DashboardEnd::Reason::Signal) std::cerr << "hitl sim: stopped by " << shown->detail << '\n';
-  if (global.verbosity >= 1)
-    log_info(global, tui::format("hitl sim: the dashboard drew %llu frames, %.2f ms each on average, %.2f ms at most",
-                                 static_cast<unsigned long long>(shown->frames), shown->render_ms_mean, shown->render_ms_max));
-  return end;
-}
-
 int run_sim(const GlobalOptions& global, SimOptions& opt) {
   const std::string cmd = "sim";
   auto& cfg = opt.session;
@@ -287,7 +244,10 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   log_info(global, "hitl sim: " + (*session)->describe() + (opt.tui ? "" : " (Ctrl-C to stop)"));
   Expected<hil::Session::EndReason> end = Error{"not run"};
   if (opt.tui) {
-    end = run_with_dashboard(global, **session, opt);
+    tui::SimDashboardConfig dc;
+    dc.trajectory_file = opt.trajectory_file;
+    dc.trajectory_mode = vehicle::to_string(opt.session.trajectory_mode);
+    end = run_session_with_dashboard(global, cmd, **session, opt.session, dc);
   } else {
     SimPrinter printer(global);
     end = (*session)->run(stop, printer);
@@ -307,11 +267,11 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   }
   if (global.json) {
     auto j = snapshot_json(snap, true);
-    j["end"] = end_name(*end);
+    j["end"] = end_reason_name(*end);
     if (tunnel) j["adb"] = adb_tunnel_json(*tunnel);
     print_json_line(j);
   } else {
-    print_summary(snap, end_name(*end));
+    print_summary(snap, end_reason_name(*end));
     if (tunnel) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
   }
   const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed;

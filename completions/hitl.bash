@@ -41,7 +41,7 @@ _hitl_options() {
         'fly trajectory') echo '-h --help --rate --mode --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
 }

@@ -242,6 +242,7 @@ complete -c hitl -n '__hitl_at "demo"' -s h -l help -d 'Print this help message 
 complete -c hitl -n '__hitl_at "demo"' -s t -l trajectory -r -f -a '(__fish_complete_suffix .json)' -d 'Another trajectory file'
 complete -c hitl -n '__hitl_at "demo"' -l speed -r -f -d 'Real-time factor'
 complete -c hitl -n '__hitl_at "demo"' -l trajectory-mode -r -f -a 'attitude velocity' -d 'velocity (Position mode) or attitude (Stabilized)'
+complete -c hitl -n '__hitl_at "demo"' -l tui -d 'Watch it on the sim dashboard'
 complete -c hitl -n '__hitl_at "completion"' -s h -l help -d 'Print this help message and exit'
 complete -c hitl -n '__hitl_at "params export"' -F -d 'FILE'
 complete -c hitl -n '__hitl_at "params load"' -F -d 'FILE'

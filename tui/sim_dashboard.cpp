@@ -13,7 +13,7 @@ SimDashboard::SimDashboard(hil::Session& session, const hil::SessionConfig& conf
       config_(config),
       dashboard_(std::move(dashboard)),
       board_(config_.clients_port, config_.sysid, dsp_hitl_rates(config_.vehicle.sensors), log_) {
-  log_.add(Severity::Info, "hitl sim: " + session_.describe() + "; ? for the keys");
+  log_.add(Severity::Info, dashboard_.title + ": " + session_.describe() + "; ? for the keys");
 }
 
 SimDashboard::~SimDashboard() { shutdown(); }
@@ -47,7 +47,7 @@ std::optional<std::string> SimDashboard::refusal(Action action) const {
       if (!trajectory_.running()) return "no trajectory is being flown";
       return std::nullopt;
     case Action::FlyTrajectory:
-      if (dashboard_.trajectory_file.empty()) return "no trajectory file: start hitl sim --tui with -t FILE.json";
+      if (dashboard_.trajectory_file.empty()) return "no trajectory file: " + dashboard_.no_trajectory_hint;
       if (dashboard_.hitl_binary.empty()) return "cannot find the hitl program to run `hitl fly trajectory`";
       return board_.link_refusal();
     case Action::Arm:
@@ -98,7 +98,7 @@ void SimDashboard::perform(Action action, const std::string& argument) {
 DashboardModel SimDashboard::collect() {
   const hil::SessionSnapshot s = session_.snapshot();
   DashboardModel m;
-  m.title = "hitl sim";
+  m.title = dashboard_.title;
   m.actions = true;
   const double pace = s.speed > 0 ? s.speed : (s.recent_real_time_factor > 0 ? s.recent_real_time_factor : 1.0);
   if (s.paused) {
