@@ -40,7 +40,7 @@ nlohmann::json to_json(const bridge::BridgeHealth& h) {
   for (const auto& l : h.links) {
     links.push_back({{"name", l.name}, {"partner", l.partner}, {"connected", l.connected}, {"packets_in", l.packets_in},
                      {"bytes_in", l.bytes_in}, {"packets_out", l.packets_out}, {"bytes_out", l.bytes_out},
-                     {"duplicates_in", l.duplicates_in}});
+                     {"duplicates_in", l.duplicates_in}, {"send_errors", l.send_errors}});
   }
   j["links"] = links;
   return j;
@@ -53,6 +53,7 @@ std::string to_line(const bridge::BridgeHealth& h) {
                         h.board_state.c_str(), static_cast<unsigned long long>(board.packets_in), kilobytes(board.bytes_in).c_str(),
                         static_cast<unsigned long long>(board.packets_out), kilobytes(board.bytes_out).c_str());
   std::string line(text, static_cast<std::size_t>(std::max(n, 0)));
+  if (board.send_errors > 0) line += "  SEND ERRORS " + std::to_string(board.send_errors);
   if (h.heartbeat_age_s) {
     std::snprintf(text, sizeof text, "  heartbeat %.1f s ago", *h.heartbeat_age_s);
     line += text;

@@ -88,6 +88,8 @@ class InspectPrinter : public inspect::Inspector::Observer {
     }
   }
 
+  void on_send_error(const std::string& text) override { std::cerr << "hitl inspect: error: " << text << '\n'; }
+
   void add_latest(nlohmann::json& j) const {
     if (show_ids_.empty() || options_.follow) return;
     nlohmann::json latest = nlohmann::json::object();
@@ -145,6 +147,7 @@ class DashboardTee : public inspect::Inspector::Observer {
     printer_.on_frame(frame, source, t_ns);
   }
   void on_tick(const telemetry::TrafficSummary& summary) override { dashboard_.on_tick(summary); }
+  void on_send_error(const std::string& text) override { dashboard_.note(tui::Severity::Error, text); }
 
  private:
   tui::InspectDashboard& dashboard_;
@@ -250,7 +253,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
     return kExitUsage;
   }
   const auto& stop = stop_flag_on_signals();
-  const char* verb = opt.port ? "listening on " : (opt.connect.empty() ? "reading " : "connected to ");
+  const char* verb = opt.port ? "listening on " : (opt.connect.empty() ? "reading " : "sending HEARTBEATs to, and listening for, ");
   log_info(global, "hitl inspect: " + std::string(verb) + (*inspector)->where() +
                        (opt.record.empty() ? "" : ", recording to " + opt.record) + (opt.tui ? "" : " (Ctrl-C for the summary)"));
 
@@ -266,6 +269,13 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   const auto results = inspect::check_expectations(summary, expectations, opt.tolerance_pct);
   bool ok = true;
   for (const auto& r : results) ok = ok && r.ok;
+  // --connect to a partner no datagram could reach: say so rather than a table of nothing.
+  const uint64_t send_errors = (*inspector)->send_errors();
+  if (!opt.connect.empty() && send_errors > 0 && summary.frames == 0) {
+    log_error(cmd, "--connect " + opt.connect + ": every HEARTBEAT failed to send (" + std::to_string(send_errors) +
+                       "); nothing was received");
+    ok = false;
+  }
   if ((*inspector)->record_failed()) {
     log_error(cmd, "--record: writing '" + opt.record + "' failed (disk full?); the recording is incomplete");
     ok = false;
@@ -275,6 +285,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
     auto j = telemetry::to_json(summary);
     j["type"] = "final";
     j["end"] = end_reason_name(*end);
+    if (!opt.connect.empty()) j["send_errors"] = send_errors;
     printer.add_latest(j);
     if (!expectations.empty()) {
       nlohmann::json arr = nlohmann::json::array();
@@ -292,6 +303,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   } else {
     std::cout << (stdout_is_tty() && !opt.follow ? "\x1b[H\x1b[J" : "\n") << traffic_table(summary)
               << printer.latest_text();
+    if (send_errors > 0) std::cout << "send errors " << send_errors << " (HEARTBEATs to " << opt.connect << " the kernel refused)\n";
     for (const auto& r : results) std::cout << (r.ok ? "PASS " : "FAIL ") << r.verdict << '\n';
     std::cout << std::flush;
   }

@@ -67,6 +67,8 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
   j["actuator_flags"] = s.actuator_flags;
   j["actuator_mode"] = s.actuator_mode;
   j["lockstep"] = {{"waits", s.lockstep_waits}, {"fallbacks", s.lockstep_fallbacks}};
+  j["send_errors"] = s.send_errors;
+  j["send_error"] = s.last_send_error;
   j["crc_errors"] = s.crc_errors;
   j["parse_errors"] = s.parse_errors;
   j["clients"] = s.clients;
@@ -101,7 +103,9 @@ std::string status_line(const hil::SessionSnapshot& s) {
                 s.sim_time_s, s.recent_real_time_factor, rate(s.sent, "HIL_SENSOR"), rate(s.sent, "HIL_GPS"),
                 rate(s.sent, "ODOMETRY"), rate(s.received, "HIL_ACTUATOR_CONTROLS"), s.armed ? "ARMED   " : "disarmed",
                 s.altitude_m, static_cast<unsigned long long>(s.late_ticks));
-  return buf;
+  std::string line = buf;
+  if (s.send_errors > 0) line += "  SEND ERRORS " + std::to_string(s.send_errors);
+  return line;
 }
 
 class SimPrinter : public hil::Session::Observer {
@@ -148,6 +152,9 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
     std::printf("%-24s %10llu %10.1f\n", name.c_str(), static_cast<unsigned long long>(c.count),
                 s.wall_time_s > 0 ? static_cast<double>(c.count) / s.wall_time_s : 0.0);
   if (s.received.empty()) std::printf("(nothing received from the flight stack)\n");
+  if (s.send_errors > 0)
+    std::printf("send errors %llu (not counted as sent): %s\n", static_cast<unsigned long long>(s.send_errors),
+                s.last_send_error.c_str());
   std::printf("late ticks %llu (max %.1f ms late, %llu resyncs)  clamped %llu  ignored: other address %llu, other sysid %llu"
               "  actuator timeouts %llu  lockstep fallbacks %llu\n",
               static_cast<unsigned long long>(s.late_ticks), s.max_lateness_ms, static_cast<unsigned long long>(s.resyncs),
@@ -273,6 +280,14 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   } else {
     print_summary(snap, end_reason_name(*end));
     if (tunnel) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
+  }
+  // Every send refused: the session ran, but nothing it simulated reached anyone.
+  uint64_t delivered = 0;
+  for (const auto& [name, c] : snap.sent) delivered += c.count;
+  if (snap.send_errors > 0 && delivered == 0) {
+    log_error(cmd, "nothing was delivered: all " + std::to_string(snap.send_errors) + " messages failed to send (" +
+                       snap.last_send_error + ")");
+    return kExitFailed;
   }
   const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed;
   return failed ? kExitFailed : kExitOk;

@@ -104,6 +104,9 @@ DashboardModel SimDashboard::collect() {
   if (s.paused) {
     m.state = "PAUSED";
     m.state_health = Health::Degraded;
+  } else if (!s.connected && s.send_errors > 0) {
+    m.state = "cannot send to the flight stack (see Messages)";
+    m.state_health = Health::Bad;
   } else if (!s.connected) {
     m.state = "no answer from the flight stack";
     m.state_health = Health::Bad;
@@ -150,6 +153,7 @@ DashboardModel SimDashboard::collect() {
       {"clamped", count(s.actuator_clamped), flag(s.actuator_clamped)},
       {"crc err", count(s.crc_errors + s.parse_errors), flag(s.crc_errors + s.parse_errors)},
       {"lockstep", s.lockstep ? count(s.lockstep_fallbacks) + " fb" : "off", flag(s.lockstep_fallbacks)},
+      {"send err", count(s.send_errors), flag(s.send_errors)},
       {"avg rtf", format("%.2f", s.real_time_factor)},
       {"max late", format("%.1f ms", s.max_lateness_ms)},
       {"clients", count(s.clients)},

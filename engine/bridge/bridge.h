@@ -49,6 +49,7 @@ struct LinkHealth {
   std::string partner;  ///< peer address, or "" when none yet
   bool connected = false;
   uint64_t packets_in = 0, bytes_in = 0, packets_out = 0, bytes_out = 0, duplicates_in = 0;
+  uint64_t send_errors = 0;  ///< packets the kernel refused to send (not in packets_out)
 };
 
 struct BridgeHealth {

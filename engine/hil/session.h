@@ -38,6 +38,8 @@ struct SessionSnapshot {
   double recent_real_time_factor = 0;  ///< over the last window
   std::map<std::string, StreamCount> sent;      ///< by message name
   std::map<std::string, StreamCount> received;  ///< from the flight stack, by message name
+  uint64_t send_errors = 0;             ///< messages the kernel refused to send (never counted in `sent`)
+  std::string last_send_error;          ///< the latest refusal in words (errno, likely fix); empty when none
   bool connected = false;               ///< SITL: PX4 connected; board: actuators arriving
   std::string partner;                  ///< the flight stack's address
   bool armed = false;

@@ -46,6 +46,8 @@ class Inspector {
     virtual void on_frame(const mavlink::Frame& /*frame*/, const std::string& /*source*/, int64_t /*t_unix_ns*/) {}
     /// Once a second of wall time, with the stats so far.
     virtual void on_tick(const telemetry::TrafficSummary& /*summary*/) {}
+    /// --connect: the first refused send to the partner, at once (errno and the likely fix).
+    virtual void on_send_error(const std::string& /*text*/) {}
   };
   enum class EndReason { Duration, Count, EndOfLog, Stopped };
 
@@ -59,13 +61,15 @@ class Inspector {
   std::string where() const;
   /// Frames that could not be written to --record (a full disk is reported, not ignored).
   bool record_failed() const { return recorder_ && !recorder_->ok(); }
+  /// --connect: HEARTBEATs the kernel refused to send (an unreachable partner).
+  uint64_t send_errors() const { return endpoint_ ? endpoint_->stats().send_errors : 0; }
 
  private:
   Inspector(const InspectConfig& config, const mavlink::MessageSet& messages);
   Expected<EndReason> run_live(const std::atomic<bool>& stop, Observer& observer);
   Expected<EndReason> run_tlog(const std::atomic<bool>& stop, Observer& observer);
   void handle(const mavlink::Frame& frame, const std::string& source, int64_t t_ns, Observer& observer);
-  void send_heartbeat();
+  void send_heartbeat(Observer& observer);
   bool counted_out() const { return config_.count > 0 && counted_ >= config_.count; }
 
   InspectConfig config_;

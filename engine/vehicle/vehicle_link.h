@@ -68,6 +68,7 @@ class VehicleLink {
   VehicleLink(std::optional<net::UdpEndpoint> udp, std::optional<net::TcpClient> tcp, const LinkOptions& options,
               std::string description);
   void send_bytes(std::span<const uint8_t> bytes);
+  std::string send_error_;  ///< the first refused send (UDP), said when no answer came
   void heartbeat();
   bool discover(double timeout_s);
 
