@@ -84,6 +84,17 @@ class SessionEvents : public hil::Session::Observer {
   const GlobalOptions& g_;
 };
 
+/// A measured figure, or "n/a" when there was nothing to measure.
+std::string figure(bool measured, const char* format, double value) {
+  if (!measured) return "n/a";
+  char text[48];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+/// The same for JSON: null when not measured.
+nlohmann::json measured_or_null(bool measured, double value) { return measured ? nlohmann::json(value) : nlohmann::json(nullptr); }
+
 double per_sim_second(const std::map<std::string, hil::StreamCount>& counts, const char* name, double sim_s) {
   const auto it = counts.find(name);
   return it == counts.end() || sim_s <= 0 ? 0.0 : static_cast<double>(it->second.count) / sim_s;
@@ -197,35 +208,43 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
                      {"ok", done},
                      {"end", *end == hil::Session::EndReason::Stopped ? "stopped" : done ? "trajectory_done" : "trajectory_failed"},
                      {"trajectory", {{"state", s.trajectory_state}, {"failure", s.trajectory_failure},
-                                     {"rms_m", s.trajectory_rms_m}, {"max_m", s.trajectory_max_m},
+                                     {"rms_m", measured_or_null(s.trajectory_samples > 0, s.trajectory_rms_m)},
+                                     {"max_m", measured_or_null(s.trajectory_samples > 0, s.trajectory_max_m)},
                                      {"samples", s.trajectory_samples}}},
                      {"sim_time_s", sim_s},
                      {"wall_time_s", s.wall_time_s},
-                     {"rates_hz", {{"HIL_SENSOR", per_sim_second(s.sent, "HIL_SENSOR", sim_s)},
-                                   {"HIL_GPS", per_sim_second(s.sent, "HIL_GPS", sim_s)},
-                                   {"ODOMETRY", per_sim_second(s.sent, "ODOMETRY", sim_s)},
-                                   {"HIL_ACTUATOR_CONTROLS", per_sim_second(s.received, "HIL_ACTUATOR_CONTROLS", sim_s)}}},
-                     {"estimate_error", {{"horizontal_rms_m", err.horizontal_rms_m}, {"attitude_rms_deg", err.attitude_rms_deg},
+                     {"rates_hz", {{"HIL_SENSOR", measured_or_null(sim_s > 0, per_sim_second(s.sent, "HIL_SENSOR", sim_s))},
+                                   {"HIL_GPS", measured_or_null(sim_s > 0, per_sim_second(s.sent, "HIL_GPS", sim_s))},
+                                   {"ODOMETRY", measured_or_null(sim_s > 0, per_sim_second(s.sent, "ODOMETRY", sim_s))},
+                                   {"HIL_ACTUATOR_CONTROLS",
+                                    measured_or_null(sim_s > 0, per_sim_second(s.received, "HIL_ACTUATOR_CONTROLS", sim_s))}}},
+                     {"estimate_error", {{"horizontal_rms_m", measured_or_null(err.position_samples > 0, err.horizontal_rms_m)},
+                                         {"attitude_rms_deg", measured_or_null(err.attitude_samples > 0, err.attitude_rms_deg)},
                                          {"position_samples", err.position_samples},
                                          {"attitude_samples", err.attitude_samples}}},
                      {"board", {{"hil_sensor_received", b.hil_sensor_received}, {"hil_gps_received", b.hil_gps_received},
                                 {"odometry_received", b.odometry_received}, {"actuators_sent", b.actuators_sent},
                                 {"malformed", b.malformed}}}});
   } else {
+    // A demo stopped before it flew has measured nothing: n/a, not zeros.
+    const bool tracked = s.trajectory_samples > 0, timed = sim_s > 0;
+    auto hz = [&](const std::map<std::string, hil::StreamCount>& m, const char* name) {
+      return figure(timed, "%.0f Hz", per_sim_second(m, name, sim_s));
+    };
     char text[1024];
     std::snprintf(text, sizeof text,
                   "\n%s: %s%s\n"
-                  "  tracking error against truth   RMS %.2f m, max %.2f m (%llu samples)\n"
-                  "  rates (per simulated second)    HIL_SENSOR %.0f Hz, HIL_GPS %.0f Hz, ODOMETRY %.0f Hz, "
-                  "HIL_ACTUATOR_CONTROLS back %.0f Hz\n"
-                  "  estimate vs truth               horizontal RMS %.2f m, attitude RMS %.2f deg\n"
+                  "  tracking error against truth   RMS %s, max %s (%llu samples)\n"
+                  "  rates (per simulated second)    HIL_SENSOR %s, HIL_GPS %s, ODOMETRY %s, HIL_ACTUATOR_CONTROLS back %s\n"
+                  "  estimate vs truth               horizontal RMS %s, attitude RMS %s\n"
                   "  simulated %.1f s in %.1f s of wall time; board: %llu HIL_SENSOR, %llu malformed\n",
                   done ? "demo flown" : "demo did not finish", s.trajectory_state.c_str(),
-                  s.trajectory_failure.empty() ? "" : (" (" + s.trajectory_failure + ")").c_str(), s.trajectory_rms_m,
-                  s.trajectory_max_m, static_cast<unsigned long long>(s.trajectory_samples),
-                  per_sim_second(s.sent, "HIL_SENSOR", sim_s), per_sim_second(s.sent, "HIL_GPS", sim_s),
-                  per_sim_second(s.sent, "ODOMETRY", sim_s), per_sim_second(s.received, "HIL_ACTUATOR_CONTROLS", sim_s),
-                  err.horizontal_rms_m, err.attitude_rms_deg, sim_s, s.wall_time_s,
+                  s.trajectory_failure.empty() ? "" : (" (" + s.trajectory_failure + ")").c_str(),
+                  figure(tracked, "%.2f m", s.trajectory_rms_m).c_str(), figure(tracked, "%.2f m", s.trajectory_max_m).c_str(),
+                  static_cast<unsigned long long>(s.trajectory_samples), hz(s.sent, "HIL_SENSOR").c_str(),
+                  hz(s.sent, "HIL_GPS").c_str(), hz(s.sent, "ODOMETRY").c_str(), hz(s.received, "HIL_ACTUATOR_CONTROLS").c_str(),
+                  figure(err.position_samples > 0, "%.2f m", err.horizontal_rms_m).c_str(),
+                  figure(err.attitude_samples > 0, "%.2f deg", err.attitude_rms_deg).c_str(), sim_s, s.wall_time_s,
                   static_cast<unsigned long long>(b.hil_sensor_received), static_cast<unsigned long long>(b.malformed));
     std::cout << text << "Next: README.md (a real board, PX4 SITL, the other commands).\n";
   }

@@ -13,6 +13,8 @@ SimDashboard::SimDashboard(hil::Session& session, const hil::SessionConfig& conf
       config_(config),
       dashboard_(std::move(dashboard)),
       board_(config_.clients_port, config_.sysid, dsp_hitl_rates(config_.vehicle.sensors), log_) {
+  // One clock on the screen: the header's simulated time stamps the messages too (and the reset's).
+  log_.set_clock([this] { return session_.snapshot().sim_time_s; });
   log_.add(Severity::Info, dashboard_.title + ": " + session_.describe() + "; ? for the keys");
 }
 
@@ -118,8 +120,6 @@ DashboardModel SimDashboard::collect() {
   m.paths = paths_from(s.paths, s.paused,
                        "expected at " + pace_text + (s.lockstep ? ", lockstep" : "") + "; loss: frames from the board");
 
-  // The truth's altitude above the rest pose (the vehicle starts at rest at home).
-  if (!rest_altitude_m_ && s.steps > 0) rest_altitude_m_ = s.altitude_m;
 
   board_.fill(m, pace);
   if (config_.clients_port == 0) m.vehicle->armed = s.armed;  // no autopilot link: the actuator flags' armed bit
@@ -127,7 +127,7 @@ DashboardModel SimDashboard::collect() {
   m.vehicle->motors = s.motor_commands;
   m.vehicle->rotor_speed_rad_s = s.rotor_speed_rad_s;
   for (const auto& r : config_.vehicle.rotors) m.vehicle->rotor_max_rad_s = std::max(m.vehicle->rotor_max_rad_s, r.max_rot_velocity_rad_s);
-  if (rest_altitude_m_) m.vehicle->truth_altitude_m = s.altitude_m - *rest_altitude_m_;
+  if (s.steps > 0) m.vehicle->truth_altitude_m = s.altitude_m;  // above home at rest, as the estimate
 
   m.trajectory_running = trajectory_.running();
   if (m.trajectory_running) m.busy = "flying " + dashboard_.trajectory_file;

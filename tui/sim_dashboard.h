@@ -55,7 +55,6 @@ class SimDashboard : public DashboardSource, public DashboardActions, public hil
   BoardClients board_;
   CommandRunner trajectory_;
   std::atomic<bool> trajectory_flying_{false};
-  std::optional<double> rest_altitude_m_;  ///< the truth's altitude at rest (first snapshot)
   mutable std::mutex finished_mutex_;
   std::optional<std::string> finished_;
 };

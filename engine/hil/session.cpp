@@ -85,6 +85,7 @@ struct Session::Impl {
   double time_offset_s = 0;      ///< simulated time before the last reset: the wire's clock never goes back
   uint64_t resets = 0;
 
+  double rest_altitude_m = 0;  ///< the body origin's height at rest at home: altitude 0, as PX4's local position
   std::map<uint32_t, Counter> sent;
   std::map<uint32_t, uint64_t> batch;  ///< messages in the HIL datagram being built: sent once it is
   uint64_t send_errors = 0;
@@ -485,8 +486,8 @@ struct Session::Impl {
     s.armed = actuators.armed();
     s.motor_commands = actuators.last_controls();
     s.rotor_speed_rad_s = st.rotor_speed_rad_s;
-    s.altitude_m = st.p_ENU_m.z();
-    s.p_NED_m = {st.p_ENU_m.y(), st.p_ENU_m.x(), -st.p_ENU_m.z()};
+    s.altitude_m = st.p_ENU_m.z() - rest_altitude_m;
+    s.p_NED_m = {st.p_ENU_m.y(), st.p_ENU_m.x(), -s.altitude_m};
     s.on_ground = st.on_ground;
     s.steps = st.step;
     s.late_ticks = pacer->stats().late;
@@ -551,6 +552,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   if (!mc) return mc.error();
   impl->model = std::move(mc.value());
   impl->sensors.emplace(vehicle, config.world, config.seed);
+  impl->rest_altitude_m = impl->model->state().p_ENU_m.z();
   impl->encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
   impl->vio_encoder = mavlink::FrameEncoder(config.sysid, kVioComponentId, config.protocol);
   impl->truth_encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
@@ -670,9 +672,19 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
                            (fifo && locked ? "" : " (run as root or grant CAP_SYS_NICE and CAP_IPC_LOCK)")});
   }
   if (s.sitl_tcp) {
-    observer.on_event({Severity::Info, "waiting for PX4 SITL to connect to TCP " + s.sitl_tcp->local_address().to_string()});
+    observer.on_event({Severity::Info, "waiting for PX4 SITL to connect to TCP " + s.sitl_tcp->local_address().to_string() +
+                                           "; start PX4 now, in its build tree: PX4_SYS_AUTOSTART=10016 "
+                                           "PX4_SIM_MODEL=none_iris build/px4_sitl_default/bin/px4 (docs/sim.md adds the "
+                                           "x500 geometry as PX4_PARAM_ variables)"});
+    const double wait_start_s = monotonic_s();
+    double next_note_s = wait_start_s + 10.0;
     while (!s.sitl_tcp->accept_client(200)) {
       if (stop.load()) return EndReason::Stopped;
+      if (monotonic_s() >= next_note_s) {
+        next_note_s += 10.0;
+        observer.on_event({Severity::Info, "still waiting for PX4 SITL on TCP " + std::to_string(s.sitl_tcp->local_address().port()) +
+                                               " (" + std::to_string(static_cast<int>(monotonic_s() - wait_start_s)) + " s)"});
+      }
     }
     observer.on_event({Severity::Info, "PX4 SITL connected from " + s.sitl_tcp->client()->to_string()});
   }

@@ -45,8 +45,8 @@ struct SessionSnapshot {
   bool armed = false;
   std::array<double, 4> motor_commands{};
   std::array<double, 4> rotor_speed_rad_s{};
-  double altitude_m = 0;                ///< above home (ground truth)
-  std::array<double, 3> p_NED_m{};
+  double altitude_m = 0;                ///< above home at rest: 0 on the ground, as PX4's local position (truth)
+  std::array<double, 3> p_NED_m{};      ///< from home at rest (the same origin as altitude_m)
   std::array<double, 4> q_FRD_to_NED{1, 0, 0, 0};
   bool on_ground = true;
   uint64_t steps = 0;
