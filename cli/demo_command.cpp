@@ -73,7 +73,12 @@ class SessionEvents : public hil::Session::Observer {
     if (e.severity != hil::Severity::Info || !g_.quiet) std::cerr << "hitl demo: " << e.text << '\n';
   }
   void on_status(const hil::SessionSnapshot& s) override {
-    if (g_.quiet || g_.json) return;
+    if (g_.json) {
+      print_json_line({{"type", "status"}, {"sim_time_s", s.sim_time_s}, {"trajectory", s.trajectory_state},
+                       {"altitude_m", s.altitude_m}, {"armed", s.armed}, {"send_errors", s.send_errors}});
+      return;
+    }
+    if (g_.quiet) return;
     char line[160];
     std::snprintf(line, sizeof line, "hitl demo: t %5.1f s  %-10s alt %5.2f m  %s", s.sim_time_s, s.trajectory_state.c_str(),
                   s.altitude_m, s.armed ? "armed" : "disarmed");
@@ -125,7 +130,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
     auto p = free_port();
     if (!p) {
       log_error("demo", p.error().message);
-      return kExitFailed;
+      return kExitUsage;  // a port that cannot be opened: 2, as in every command
     }
     *port = *p;
   }
@@ -147,7 +152,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
       auto p = free_port();
       if (!p) {
         log_error("demo", p.error().message);
-        return kExitFailed;
+        return kExitUsage;  // a port that cannot be opened: 2, as in every command
       }
       session.clients_port = *p;
     }
@@ -156,12 +161,12 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   auto board = target::Board::create(board_config);
   if (!board) {
     log_error("demo", board.error().message);
-    return kExitFailed;
+    return kExitUsage;  // a port that cannot be opened: 2, as in every command
   }
   auto sim = hil::Session::create(session);
   if (!sim) {
     log_error("demo", sim.error().message);
-    return kExitFailed;
+    return kExitUsage;  // a port that cannot be opened: 2, as in every command
   }
   log_info(g, "hitl demo: an emulated VOXL2 board (not PX4) and the Simbody x500 in lockstep, flying " +
                   (o.trajectory_file.empty() ? std::string("docs/examples/square.json") : o.trajectory_file) +
@@ -204,7 +209,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   const double sim_s = s.sim_time_s;
   const auto& err = estimate.estimate_error;
   if (g.json) {
-    print_json_line({{"type", "demo"},
+    print_json_line({{"type", "summary"},
                      {"ok", done},
                      {"end", *end == hil::Session::EndReason::Stopped ? "stopped" : done ? "trajectory_done" : "trajectory_failed"},
                      {"trajectory", {{"state", s.trajectory_state}, {"failure", s.trajectory_failure},

@@ -34,7 +34,7 @@ constexpr uint32_t kPx4Hold = (4u << 16) | (3u << 24);
 
 int finish(const GlobalOptions& g, const char* action, bool ok, const std::string& text, nlohmann::json extra = {}) {
   if (g.json) {
-    nlohmann::json j = {{"type", "fly"}, {"action", action}, {"ok", ok}, {"message", text}};
+    nlohmann::json j = {{"type", "summary"}, {"command", "fly"}, {"action", action}, {"ok", ok}, {"message", text}};
     for (auto& [k, v] : extra.items()) j[k] = v;
     print_json_line(j);
   } else {

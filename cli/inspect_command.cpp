@@ -74,7 +74,7 @@ class InspectPrinter : public inspect::Inspector::Observer {
   void on_tick(const telemetry::TrafficSummary& summary) override {
     if (global_.json) {
       auto j = telemetry::to_json(summary);
-      j["type"] = "summary";
+      j["type"] = "status";
       add_latest(j);
       print_json_line(j);
     } else if (global_.quiet) {
@@ -283,7 +283,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
 
   if (global.json) {
     auto j = telemetry::to_json(summary);
-    j["type"] = "final";
+    j["type"] = "summary";
     j["end"] = end_reason_name(*end);
     if (!opt.connect.empty()) j["send_errors"] = send_errors;
     printer.add_latest(j);

@@ -320,9 +320,10 @@ class Bridge {
 
 }  // namespace
 
-Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop) {
+Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop, bool* opened) {
   Bridge bridge(config, observer);
   if (auto st = bridge.open(); !st) return st;
+  if (opened != nullptr) *opened = true;
   observer.on_event(bridge.describe(), false);
   return bridge.run(stop);
 }

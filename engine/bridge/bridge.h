@@ -71,6 +71,8 @@ class BridgeObserver {
 };
 
 /// Runs until `stop` is set, the duration ends, or an error (a port in use, a bad address).
-Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop);
+/// `opened` (when given) turns true once every socket is open: an error before that is bad input
+/// (a port in use, a bad address: exit 2), one after it is the link's (exit 1).
+Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop, bool* opened = nullptr);
 
 }  // namespace hitl::bridge

@@ -14,7 +14,7 @@ TEST(DemoE2E, FliesTheSquareAndReports) {
   auto r = test::run_hitl({"--json", "demo"}, std::chrono::seconds(240));
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto j = test::last_json_line(r.out);
-  EXPECT_EQ(j["type"], "demo");
+  EXPECT_EQ(j["type"], "summary");
   EXPECT_TRUE(j["ok"].get<bool>());
   EXPECT_EQ(j["trajectory"]["state"], "DONE");
   // Against truth, flying on truth: measured RMS 0.34 m, max 0.81 m.
