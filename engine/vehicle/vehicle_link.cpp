@@ -81,6 +81,7 @@ bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
   };
   for (;;) {
     if (closed_) return false;
+    if (options_.stop != nullptr && options_.stop->load()) return false;
     if (monotonic_s() - last_heartbeat_s_ >= 1.0) heartbeat();
     // Nothing could be sent and nothing came: no answer will come, so do not wait for one.
     if (udp_ && udp_->stats().datagrams_out == 0 && udp_->stats().send_errors > 0 && udp_->stats().datagrams_in == 0)

@@ -9,6 +9,7 @@
 // The autopilot is discovered from its HEARTBEAT (autopilot != MAV_AUTOPILOT_INVALID).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -38,6 +39,9 @@ struct LinkOptions {
   double timeout_s = 5.0;                 ///< --timeout: discovery
   uint8_t own_sysid = 255;                ///< our identity: a ground station
   uint8_t own_compid = 190;
+  /// When set and true, every wait (discovery too) ends within 0.2 s: a dashboard quitting does not
+  /// wait out a discovery timeout.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 class VehicleLink {
