@@ -30,7 +30,7 @@ std::string kilobytes(uint64_t bytes) {
 }
 
 nlohmann::json to_json(const bridge::BridgeHealth& h) {
-  nlohmann::json j = {{"type", "link"}, {"uptime_s", h.uptime_s}, {"board", h.board_state},
+  nlohmann::json j = {{"type", "status"}, {"uptime_s", h.uptime_s}, {"board", h.board_state},
                       {"heartbeat_age_s", h.heartbeat_age_s ? nlohmann::json(*h.heartbeat_age_s) : nlohmann::json(nullptr)},
                       {"rtt_ms", h.rtt_ms ? nlohmann::json(*h.rtt_ms) : nlohmann::json(nullptr)},
                       {"clients", h.clients}, {"duplicates", h.duplicates},
@@ -42,7 +42,7 @@ nlohmann::json to_json(const bridge::BridgeHealth& h) {
   for (const auto& l : h.links) {
     links.push_back({{"name", l.name}, {"partner", l.partner}, {"connected", l.connected}, {"packets_in", l.packets_in},
                      {"bytes_in", l.bytes_in}, {"packets_out", l.packets_out}, {"bytes_out", l.bytes_out},
-                     {"duplicates_in", l.duplicates_in}});
+                     {"duplicates_in", l.duplicates_in}, {"send_errors", l.send_errors}});
   }
   j["links"] = links;
   return j;
@@ -55,6 +55,7 @@ std::string to_line(const bridge::BridgeHealth& h) {
                         h.board_state.c_str(), static_cast<unsigned long long>(board.packets_in), kilobytes(board.bytes_in).c_str(),
                         static_cast<unsigned long long>(board.packets_out), kilobytes(board.bytes_out).c_str());
   std::string line(text, static_cast<std::size_t>(std::max(n, 0)));
+  if (board.send_errors > 0) line += "  SEND ERRORS " + std::to_string(board.send_errors);
   if (h.heartbeat_age_s) {
     std::snprintf(text, sizeof text, "  heartbeat %.1f s ago", *h.heartbeat_age_s);
     line += text;
@@ -86,21 +87,25 @@ class Printer : public bridge::BridgeObserver {
     std::cerr << "hitl bridge: " << text << std::endl;
   }
   void on_health(const bridge::BridgeHealth& h) override {
+    last_ = h;
     if (g_.json) print_json_line(to_json(h));
     else if (!g_.quiet) std::cout << to_line(h) << std::endl;
   }
+  /// The last health report (the summary's figures), if any came.
+  const std::optional<bridge::BridgeHealth>& last() const { return last_; }
 
  private:
   const GlobalOptions& g_;
+  std::optional<bridge::BridgeHealth> last_;
 };
 
 /// The bridge on its own thread, the dashboard on this one; q, a signal or the bridge ending close it.
-Status run_with_dashboard(const GlobalOptions& g, const bridge::BridgeConfig& config) {
+Status run_with_dashboard(const GlobalOptions& g, const bridge::BridgeConfig& config, bool* opened) {
   tui::BridgeDashboard dashboard(config);
   std::atomic<bool> stop{false};
   Status ran = Ok{};
   std::thread loop([&] {
-    ran = bridge::run_bridge(config, dashboard, stop);
+    ran = bridge::run_bridge(config, dashboard, stop, opened);
     dashboard.mark_finished(ran ? std::string("the bridge ended") : "error: " + ran.error().message);
   });
   auto shown = tui::run_dashboard(dashboard, &dashboard);
@@ -145,20 +150,30 @@ int run(const GlobalOptions& g, BridgeOptions& o) {
     o.config.board_port = tunnel->local_endpoint(adb::Channel::Gcs).port();
   }
   Status st = Ok{};
+  Printer printer(g);
+  bool opened = false;
+  bool signalled = o.tui;  // the dashboard ends on q or a signal, never by --duration alone
   if (o.tui) {
-    st = run_with_dashboard(g, o.config);
+    st = run_with_dashboard(g, o.config, &opened);
   } else {
-    Printer printer(g);
     const auto& stop = stop_flag_on_signals();
-    st = bridge::run_bridge(o.config, printer, stop);
+    st = bridge::run_bridge(o.config, printer, stop, &opened);
+    signalled = stop.load();
   }
-  if (tunnel) {
-    if (g.json) print_json_line({{"type", "adb"}, {"adb", adb_tunnel_json(*tunnel)}});
-    else if (!g.quiet) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
+  if (g.json) {
+    // Exactly one summary, last: the last health report's figures, how it ended, the adb tunnel.
+    nlohmann::json j = printer.last() ? to_json(*printer.last()) : nlohmann::json::object();
+    j["type"] = "summary";
+    j["end"] = !st ? "error" : (signalled || o.config.duration_s <= 0) ? "stopped" : "duration";
+    if (!st) j["error"] = st.error().message;
+    if (tunnel) j["adb"] = adb_tunnel_json(*tunnel);
+    print_json_line(j);
+  } else if (tunnel && !g.quiet) {
+    std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
   }
   if (!st) {
     log_error("bridge", st.error().message);
-    return kExitFailed;
+    return opened ? kExitFailed : kExitUsage;  // a port in use or a bad address: 2, as in every command
   }
   return kExitOk;
 }

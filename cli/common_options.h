@@ -13,9 +13,15 @@
 
 namespace hitl::cli {
 
-/// Exit codes (DESIGN.md): 0 success, 1 a check or command failed, 2 bad usage or input.
+// The exit codes of every command, the one table (README "Exit codes", the man page's EXIT STATUS;
+// tests/e2e/exit_codes_e2e_test.cpp holds each command to it).
+/// Success: the command did what it was asked, every check passed.
 inline constexpr int kExitOk = 0;
+/// A check failed, the board refused a command, no board answered (no HEARTBEAT, or every send to
+/// it refused), or nothing a session sent was delivered.
 inline constexpr int kExitFailed = 1;
+/// Bad usage or input: an unknown option, a bad value or file, an address or port that cannot be
+/// opened (a port in use): the command could not start.
 inline constexpr int kExitUsage = 2;
 
 struct GlobalOptions {

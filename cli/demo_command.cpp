@@ -2,19 +2,23 @@
 // loopback ports) and the simulator in lockstep fly docs/examples/square.json (takeoff, a 5 m
 // square, land), then a short report: tracking error, rates achieved, the board's estimate
 // against the simulator's truth. No board, no network, no configuration. Ctrl-C stops it all.
+// --tui: the sim dashboard (docs/tui.md) on the flight, in real time unless --speed says otherwise.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <mutex>
 #include <thread>
 
 #include "cli/commands.h"
 #include "cli/number_check.h"
+#include "cli/session_dashboard.h"
 #include "engine/hil/session.h"
 #include "engine/model/x500_defaults.h"
 #include "engine/net/udp_endpoint.h"
 #include "engine/vehicle/telemetry_feed.h"
 #include "engine/vehicle/trajectory.h"
 #include "target/emulator/board.h"
+#include "tui/terminal.h"
 
 namespace hitl::cli {
 
@@ -25,6 +29,8 @@ namespace {
 struct DemoOptions {
   std::string trajectory_file;  ///< empty: the compiled-in square
   double speed = 0;             ///< 0: as fast as lockstep allows
+  bool speed_given = false;     ///< --speed on the command line (--tui otherwise flies in real time)
+  bool tui = false;             ///< --tui: the sim dashboard on the demo
   vehicle::StickMode mode = vehicle::StickMode::Velocity;
 };
 
@@ -38,15 +44,27 @@ Expected<uint16_t> free_port() {
   return ep->local_address().port();
 }
 
+/// The emulated board's events: on stderr, or in the dashboard's messages panel while it is shown.
 class BoardEvents : public target::Board::Observer {
  public:
   explicit BoardEvents(const GlobalOptions& g) : g_(g) {}
   void on_event(const target::BoardEvent& e) override {
-    if (e.warning || g_.verbosity > 0) std::cerr << "hitl demo: board: " << e.text << '\n';
+    if (!e.warning && g_.verbosity == 0) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (dashboard_ != nullptr)
+      dashboard_->note(e.warning ? tui::Severity::Warning : tui::Severity::Info, "board: " + e.text);
+    else
+      std::cerr << "hitl demo: board: " << e.text << '\n';
+  }
+  void attach(tui::SimDashboard* dashboard) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    dashboard_ = dashboard;
   }
 
  private:
   const GlobalOptions& g_;
+  std::mutex mutex_;
+  tui::SimDashboard* dashboard_ = nullptr;
 };
 
 class SessionEvents : public hil::Session::Observer {
@@ -56,7 +74,12 @@ class SessionEvents : public hil::Session::Observer {
     if (e.severity != hil::Severity::Info || !g_.quiet) std::cerr << "hitl demo: " << e.text << '\n';
   }
   void on_status(const hil::SessionSnapshot& s) override {
-    if (g_.quiet || g_.json) return;
+    if (g_.json) {
+      print_json_line({{"type", "status"}, {"sim_time_s", s.sim_time_s}, {"trajectory", s.trajectory_state},
+                       {"altitude_m", s.altitude_m}, {"armed", s.armed}, {"send_errors", s.send_errors}});
+      return;
+    }
+    if (g_.quiet) return;
     char line[160];
     std::snprintf(line, sizeof line, "hitl demo: t %5.1f s  %-10s alt %5.2f m  %s", s.sim_time_s, s.trajectory_state.c_str(),
                   s.altitude_m, s.armed ? "armed" : "disarmed");
@@ -67,12 +90,31 @@ class SessionEvents : public hil::Session::Observer {
   const GlobalOptions& g_;
 };
 
+/// A measured figure, or "n/a" when there was nothing to measure.
+std::string figure(bool measured, const char* format, double value) {
+  if (!measured) return "n/a";
+  char text[48];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+/// The same for JSON: null when not measured.
+nlohmann::json measured_or_null(bool measured, double value) { return measured ? nlohmann::json(value) : nlohmann::json(nullptr); }
+
 double per_sim_second(const std::map<std::string, hil::StreamCount>& counts, const char* name, double sim_s) {
   const auto it = counts.find(name);
   return it == counts.end() || sim_s <= 0 ? 0.0 : static_cast<double>(it->second.count) / sim_s;
 }
 
-int run_demo(const GlobalOptions& g, const DemoOptions& o) {
+int run_demo(const GlobalOptions& g, DemoOptions o) {
+  if (o.tui) {
+    if (auto usable = tui::terminal_usable(); !usable) {
+      std::cerr << "hitl demo: --tui: " << usable.error().message << "; showing the status lines instead\n";
+      o.tui = false;
+    } else if (!o.speed_given) {
+      o.speed = 1;  // to be watched: real time
+    }
+  }
   auto trajectory = o.trajectory_file.empty() ? vehicle::Trajectory::parse(kSquareTrajectory, "docs/examples/square.json")
                                               : vehicle::Trajectory::load(o.trajectory_file);
   if (!trajectory) {
@@ -89,7 +131,7 @@ int run_demo(const GlobalOptions& g, const DemoOptions& o) {
     auto p = free_port();
     if (!p) {
       log_error("demo", p.error().message);
-      return kExitFailed;
+      return kExitUsage;  // a port that cannot be opened: 2, as in every command
     }
     *port = *p;
   }
@@ -111,7 +153,7 @@ int run_demo(const GlobalOptions& g, const DemoOptions& o) {
       auto p = free_port();
       if (!p) {
         log_error("demo", p.error().message);
-        return kExitFailed;
+        return kExitUsage;  // a port that cannot be opened: 2, as in every command
       }
       session.clients_port = *p;
     }
@@ -120,12 +162,12 @@ int run_demo(const GlobalOptions& g, const DemoOptions& o) {
   auto board = target::Board::create(board_config);
   if (!board) {
     log_error("demo", board.error().message);
-    return kExitFailed;
+    return kExitUsage;  // a port that cannot be opened: 2, as in every command
   }
   auto sim = hil::Session::create(session);
   if (!sim) {
     log_error("demo", sim.error().message);
-    return kExitFailed;
+    return kExitUsage;  // a port that cannot be opened: 2, as in every command
   }
   log_info(g, "hitl demo: an emulated VOXL2 board (not PX4) and the Simbody x500 in lockstep, flying " +
                   (o.trajectory_file.empty() ? std::string("docs/examples/square.json") : o.trajectory_file) +
@@ -143,8 +185,17 @@ int run_demo(const GlobalOptions& g, const DemoOptions& o) {
   vehicle::TelemetryFeed feed(link, vehicle::dashboard_streams(), [](mavlink::MavSeverity, const std::string&) {},
                               hil::kSimulatorSystemId);
 
-  SessionEvents events(g);
-  auto end = (*sim)->run(stop, events);
+  Expected<hil::Session::EndReason> end = Error{"not run"};
+  if (o.tui) {
+    tui::SimDashboardConfig dc;
+    dc.title = "hitl demo";
+    dc.no_trajectory_hint = "the demo flies its trajectory by itself";
+    end = run_session_with_dashboard(g, "demo", **sim, session, dc,
+                                     [&board_events](tui::SimDashboard* d) { board_events.attach(d); });
+  } else {
+    SessionEvents events(g);
+    end = (*sim)->run(stop, events);
+  }
   const auto estimate = feed.snapshot();
   feed.stop();
   stop_board = true;
@@ -159,39 +210,47 @@ int run_demo(const GlobalOptions& g, const DemoOptions& o) {
   const double sim_s = s.sim_time_s;
   const auto& err = estimate.estimate_error;
   if (g.json) {
-    print_json_line({{"type", "demo"},
+    print_json_line({{"type", "summary"},
                      {"ok", done},
                      {"end", *end == hil::Session::EndReason::Stopped ? "stopped" : done ? "trajectory_done" : "trajectory_failed"},
                      {"trajectory", {{"state", s.trajectory_state}, {"failure", s.trajectory_failure},
-                                     {"rms_m", s.trajectory_rms_m}, {"max_m", s.trajectory_max_m},
+                                     {"rms_m", measured_or_null(s.trajectory_samples > 0, s.trajectory_rms_m)},
+                                     {"max_m", measured_or_null(s.trajectory_samples > 0, s.trajectory_max_m)},
                                      {"samples", s.trajectory_samples}}},
                      {"sim_time_s", sim_s},
                      {"wall_time_s", s.wall_time_s},
-                     {"rates_hz", {{"HIL_SENSOR", per_sim_second(s.sent, "HIL_SENSOR", sim_s)},
-                                   {"HIL_GPS", per_sim_second(s.sent, "HIL_GPS", sim_s)},
-                                   {"ODOMETRY", per_sim_second(s.sent, "ODOMETRY", sim_s)},
-                                   {"HIL_ACTUATOR_CONTROLS", per_sim_second(s.received, "HIL_ACTUATOR_CONTROLS", sim_s)}}},
-                     {"estimate_error", {{"horizontal_rms_m", err.horizontal_rms_m}, {"attitude_rms_deg", err.attitude_rms_deg},
+                     {"rates_hz", {{"HIL_SENSOR", measured_or_null(sim_s > 0, per_sim_second(s.sent, "HIL_SENSOR", sim_s))},
+                                   {"HIL_GPS", measured_or_null(sim_s > 0, per_sim_second(s.sent, "HIL_GPS", sim_s))},
+                                   {"ODOMETRY", measured_or_null(sim_s > 0, per_sim_second(s.sent, "ODOMETRY", sim_s))},
+                                   {"HIL_ACTUATOR_CONTROLS",
+                                    measured_or_null(sim_s > 0, per_sim_second(s.received, "HIL_ACTUATOR_CONTROLS", sim_s))}}},
+                     {"estimate_error", {{"horizontal_rms_m", measured_or_null(err.position_samples > 0, err.horizontal_rms_m)},
+                                         {"attitude_rms_deg", measured_or_null(err.attitude_samples > 0, err.attitude_rms_deg)},
                                          {"position_samples", err.position_samples},
                                          {"attitude_samples", err.attitude_samples}}},
                      {"board", {{"hil_sensor_received", b.hil_sensor_received}, {"hil_gps_received", b.hil_gps_received},
                                 {"odometry_received", b.odometry_received}, {"actuators_sent", b.actuators_sent},
                                 {"malformed", b.malformed}}}});
   } else {
+    // A demo stopped before it flew has measured nothing: n/a, not zeros.
+    const bool tracked = s.trajectory_samples > 0, timed = sim_s > 0;
+    auto hz = [&](const std::map<std::string, hil::StreamCount>& m, const char* name) {
+      return figure(timed, "%.0f Hz", per_sim_second(m, name, sim_s));
+    };
     char text[1024];
     std::snprintf(text, sizeof text,
                   "\n%s: %s%s\n"
-                  "  tracking error against truth   RMS %.2f m, max %.2f m (%llu samples)\n"
-                  "  rates (per simulated second)    HIL_SENSOR %.0f Hz, HIL_GPS %.0f Hz, ODOMETRY %.0f Hz, "
-                  "HIL_ACTUATOR_CONTROLS back %.0f Hz\n"
-                  "  estimate vs truth               horizontal RMS %.2f m, attitude RMS %.2f deg\n"
+                  "  tracking error against truth   RMS %s, max %s (%llu samples)\n"
+                  "  rates (per simulated second)    HIL_SENSOR %s, HIL_GPS %s, ODOMETRY %s, HIL_ACTUATOR_CONTROLS back %s\n"
+                  "  estimate vs truth               horizontal RMS %s, attitude RMS %s\n"
                   "  simulated %.1f s in %.1f s of wall time; board: %llu HIL_SENSOR, %llu malformed\n",
                   done ? "demo flown" : "demo did not finish", s.trajectory_state.c_str(),
-                  s.trajectory_failure.empty() ? "" : (" (" + s.trajectory_failure + ")").c_str(), s.trajectory_rms_m,
-                  s.trajectory_max_m, static_cast<unsigned long long>(s.trajectory_samples),
-                  per_sim_second(s.sent, "HIL_SENSOR", sim_s), per_sim_second(s.sent, "HIL_GPS", sim_s),
-                  per_sim_second(s.sent, "ODOMETRY", sim_s), per_sim_second(s.received, "HIL_ACTUATOR_CONTROLS", sim_s),
-                  err.horizontal_rms_m, err.attitude_rms_deg, sim_s, s.wall_time_s,
+                  s.trajectory_failure.empty() ? "" : (" (" + s.trajectory_failure + ")").c_str(),
+                  figure(tracked, "%.2f m", s.trajectory_rms_m).c_str(), figure(tracked, "%.2f m", s.trajectory_max_m).c_str(),
+                  static_cast<unsigned long long>(s.trajectory_samples), hz(s.sent, "HIL_SENSOR").c_str(),
+                  hz(s.sent, "HIL_GPS").c_str(), hz(s.sent, "ODOMETRY").c_str(), hz(s.received, "HIL_ACTUATOR_CONTROLS").c_str(),
+                  figure(err.position_samples > 0, "%.2f m", err.horizontal_rms_m).c_str(),
+                  figure(err.attitude_samples > 0, "%.2f deg", err.attitude_rms_deg).c_str(), sim_s, s.wall_time_s,
                   static_cast<unsigned long long>(b.hil_sensor_received), static_cast<unsigned long long>(b.malformed));
     std::cout << text << "Next: README.md (a real board, PX4 SITL, the other commands).\n";
   }
@@ -212,8 +271,15 @@ void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
                                                                                   {"attitude", vehicle::StickMode::Attitude}}))
       ->default_str("velocity");
+  auto* speed = sub->get_option("--speed");
+  sub->add_flag("--tui", o->tui,
+                "Watch it on the sim dashboard (docs/tui.md), in real time unless --speed is given; the report "
+                "follows when the flight ends or on q. Without a terminal: the status lines");
   sub->footer("Exit: 0 when the trajectory was flown and the vehicle landed and disarmed, 1 otherwise.");
-  sub->callback([&options, &state, o]() { state.exit_code = run_demo(options, *o); });
+  sub->callback([&options, &state, o, speed]() {
+    o->speed_given = speed->count() > 0;
+    state.exit_code = run_demo(options, *o);
+  });
 }
 
 }  // namespace hitl::cli

@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/link_options.h"
 #include "cli/number_check.h"
+#include "engine/common/clock.h"
 #include "engine/hil/session_config.h"
 #include "engine/mavlink/enums.h"
 #include "engine/vehicle/command_client.h"
@@ -35,7 +36,7 @@ constexpr uint32_t kPx4Hold = (4u << 16) | (3u << 24);
 
 int finish(const GlobalOptions& g, const char* action, bool ok, const std::string& text, nlohmann::json extra = {}) {
   if (g.json) {
-    nlohmann::json j = {{"type", "fly"}, {"action", action}, {"ok", ok}, {"message", text}};
+    nlohmann::json j = {{"type", "summary"}, {"command", "fly"}, {"action", action}, {"ok", ok}, {"message", text}};
     for (auto& [k, v] : extra.items()) j[k] = v;
     print_json_line(j);
   } else {
@@ -208,7 +209,14 @@ int run_fly(const GlobalOptions& g, const FlyOptions& o, const std::string& acti
     } else if (auto p = vehicle::ParamClient(**link).get("MIS_TAKEOFF_ALT")) {
       target_m = p->as_double();
     }
+    // A refusal while the board's preflight checks are pending is retried within --wait, saying why.
+    const double give_up_s = monotonic_s() + o.wait_s;
     auto r = commands.send(mavlink::cmd::kNavTakeoff, {0, 0, 0, NAN, NAN, NAN, param7});
+    while (r && !r->accepted() && r->pending() && monotonic_s() < give_up_s) {
+      log_info(g, "hitl fly takeoff: waiting for the board: " + r->text());
+      (*link)->wait(1.0, [](const mavlink::Frame&) { return false; });
+      r = commands.send(mavlink::cmd::kNavTakeoff, {0, 0, 0, NAN, NAN, NAN, param7});
+    }
     if (!r) return finish(g, "takeoff", false, r.error().message);
     if (!r->accepted()) return finish(g, "takeoff", false, "Takeoff " + r->text());
     double alt_m = 0;
@@ -248,7 +256,7 @@ void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   auto* sub = app.add_subcommand("fly", "Take off, land, hold or fly a trajectory file, and wait for the outcome");
   sub->require_subcommand(1);
   add_link_options(sub, o->link);
-  sub->add_option("--wait", o->wait_s, "Seconds to wait for the outcome")->capture_default_str()->check(positive_number());
+  sub->add_option("--wait", o->wait_s, "Seconds to wait for the outcome (takeoff: also retried while the board's preflight checks are pending)")->capture_default_str()->check(positive_number());
   sub->footer("Arm first (hitl arm). Exit: 0 the outcome was seen, 1 refused or timed out.");
   auto add = [&](const char* name, const char* help) {
     auto* c = sub->add_subcommand(name, help);

@@ -77,7 +77,7 @@ class InspectPrinter : public inspect::Inspector::Observer {
   void on_tick(const telemetry::TrafficSummary& summary) override {
     if (global_.json) {
       auto j = telemetry::to_json(summary);
-      j["type"] = "summary";
+      j["type"] = "status";
       add_latest(j);
       print_json_line(j);
     } else if (global_.quiet) {
@@ -90,6 +90,8 @@ class InspectPrinter : public inspect::Inspector::Observer {
       std::cout << traffic_line(summary) << '\n' << std::flush;
     }
   }
+
+  void on_send_error(const std::string& text) override { std::cerr << "hitl inspect: error: " << text << '\n'; }
 
   void add_latest(nlohmann::json& j) const {
     if (show_ids_.empty() || options_.follow) return;
@@ -149,6 +151,7 @@ class DashboardTee : public inspect::Inspector::Observer {
     printer_.on_frame(frame, source, t_ns);
   }
   void on_tick(const telemetry::TrafficSummary& summary) override { dashboard_.on_tick(summary); }
+  void on_send_error(const std::string& text) override { dashboard_.note(tui::Severity::Error, text); }
 
  private:
   tui::InspectDashboard& dashboard_;
@@ -254,7 +257,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
     return kExitUsage;
   }
   const auto& stop = stop_flag_on_signals();
-  const char* verb = opt.port ? "listening on " : (opt.connect.empty() ? "reading " : "connected to ");
+  const char* verb = opt.port ? "listening on " : (opt.connect.empty() ? "reading " : "sending HEARTBEATs to, and listening for, ");
   log_info(global, "hitl inspect: " + std::string(verb) + (*inspector)->where() +
                        (opt.record.empty() ? "" : ", recording to " + opt.record) + (opt.tui ? "" : " (Ctrl-C for the summary)"));
 
@@ -270,6 +273,13 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   const auto results = inspect::check_expectations(summary, expectations, opt.tolerance_pct);
   bool ok = true;
   for (const auto& r : results) ok = ok && r.ok;
+  // --connect to a partner no datagram could reach: say so rather than a table of nothing.
+  const uint64_t send_errors = (*inspector)->send_errors();
+  if (!opt.connect.empty() && send_errors > 0 && summary.frames == 0) {
+    log_error(cmd, "--connect " + opt.connect + ": every HEARTBEAT failed to send (" + std::to_string(send_errors) +
+                       "); nothing was received");
+    ok = false;
+  }
   if ((*inspector)->record_failed()) {
     log_error(cmd, "--record: " + (*inspector)->record_error() + "; the recording is incomplete");
     ok = false;
@@ -277,8 +287,9 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
 
   if (global.json) {
     auto j = telemetry::to_json(summary);
-    j["type"] = "final";
+    j["type"] = "summary";
     j["end"] = end_reason_name(*end);
+    if (!opt.connect.empty()) j["send_errors"] = send_errors;
     printer.add_latest(j);
     if (!expectations.empty()) {
       nlohmann::json arr = nlohmann::json::array();
@@ -296,6 +307,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   } else {
     std::cout << (stdout_is_tty() && !opt.follow ? "\x1b[H\x1b[J" : "\n") << traffic_table(summary)
               << printer.latest_text();
+    if (send_errors > 0) std::cout << "send errors " << send_errors << " (HEARTBEATs to " << opt.connect << " the kernel refused)\n";
     for (const auto& r : results) std::cout << (r.ok ? "PASS " : "FAIL ") << r.verdict << '\n';
     std::cout << std::flush;
   }

@@ -6,6 +6,8 @@
 #include "cli/commands.h"
 #include "cli/common_options.h"
 #include "cli/number_check.h"
+#include "cli/help_format.h"
+#include "cli/parse_errors.h"
 #include "cli/version.h"
 
 int main(int argc, char** argv) {
@@ -14,11 +16,12 @@ int main(int argc, char** argv) {
       "hitl: run and diagnose hardware-in-the-loop simulation of a PX4 x500 whose flight stack runs on a "
       "ModalAI VOXL2 / M0197 board.",
       "hitl"};
+  app.formatter(std::make_shared<HelpFormatter>());  // before the subcommands: they copy it
   app.set_version_flag("--version", std::string("hitl ") + kVersion);
   app.require_subcommand(1);
   app.fallthrough();
   app.footer(
-      "Exit codes: 0 success, 1 a check or command failed, 2 bad usage or input.\n"
+      "Exit codes: 0 success; 1 a check failed, the board refused or did not answer; 2 bad usage or input.\n"
       "Run `hitl COMMAND --help` for a command's options.");
 
   GlobalOptions options;
@@ -47,6 +50,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    const std::vector<std::string> args(argv + 1, argv + argc);
+    std::string config_file;
+    for (std::size_t i = 0; i + 1 < args.size(); ++i)
+      if (args[i] == "--config") config_file = args[i + 1];
+    for (const auto& a : args)
+      if (a.rfind("--config=", 0) == 0) config_file = a.substr(9);
+    if (const auto better = explain_parse_error(app, e, args, config_file); !better.empty()) {
+      std::cerr << better << '\n';
+      return kExitUsage;
+    }
     app.exit(e);
     return kExitUsage;
   }

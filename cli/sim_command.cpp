@@ -1,9 +1,7 @@
 // hitl sim: the Simbody x500 bridged to a flight stack over MAVLink (replaces the spec's
 // Gazebo + mavlink_hitl_gazebosim + hitl-gz-start.sh).
-#include <atomic>
 #include <cstdio>
 #include <iostream>
-#include <thread>
 #include <map>
 #include <memory>
 
@@ -12,14 +10,12 @@
 #include "cli/adb_options.h"
 #include "cli/commands.h"
 #include "cli/number_check.h"
+#include "cli/session_dashboard.h"
 #include "engine/hil/session.h"
 #include "engine/net/socket_address.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
 #include "engine/model/x500_defaults.h"
-#include "tui/command_runner.h"
-#include "tui/draw.h"
-#include "tui/sim_dashboard.h"
 #include "tui/terminal.h"
 
 namespace hitl::cli {
@@ -80,6 +76,8 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
                   {"max_rebound_m", s.max_rebound_m},
                   {"max_touchdown_speed_m_s", s.max_touchdown_speed_m_s},
                   {"peak_accel_m_s2", s.peak_touchdown_accel_m_s2}};
+  j["send_errors"] = s.send_errors;
+  j["send_error"] = s.last_send_error;
   j["crc_errors"] = s.crc_errors;
   j["parse_errors"] = s.parse_errors;
   j["clients"] = s.clients;
@@ -122,6 +120,7 @@ std::string status_line(const hil::SessionSnapshot& s) {
     std::snprintf(buf, sizeof buf, "  IMU SAT %llu", static_cast<unsigned long long>(s.imu_accel_saturated + s.imu_gyro_saturated));
     line += buf;
   }
+  if (s.send_errors > 0) line += "  SEND ERRORS " + std::to_string(s.send_errors);
   return line;
 }
 
@@ -169,6 +168,9 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
     std::printf("%-24s %10llu %10.1f\n", name.c_str(), static_cast<unsigned long long>(c.count),
                 s.wall_time_s > 0 ? static_cast<double>(c.count) / s.wall_time_s : 0.0);
   if (s.received.empty()) std::printf("(nothing received from the flight stack)\n");
+  if (s.send_errors > 0)
+    std::printf("send errors %llu (not counted as sent): %s\n", static_cast<unsigned long long>(s.send_errors),
+                s.last_send_error.c_str());
   std::printf("late ticks %llu (max %.1f ms late, %llu resyncs)  clamped %llu  ignored: other address %llu, other sysid %llu"
               "  actuator timeouts %llu  lockstep fallbacks %llu\n",
               static_cast<unsigned long long>(s.late_ticks), s.max_lateness_ms, static_cast<unsigned long long>(s.resyncs),
@@ -186,45 +188,6 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
     std::printf("trajectory: %s%s, tracking error against truth RMS %.2f m, max %.2f m (%llu samples)\n",
                 s.trajectory_state.c_str(), s.trajectory_failure.empty() ? "" : (": " + s.trajectory_failure).c_str(),
                 s.trajectory_rms_m, s.trajectory_max_m, static_cast<unsigned long long>(s.trajectory_samples));
-}
-
-const char* end_name(hil::Session::EndReason r) {
-  switch (r) {
-    case hil::Session::EndReason::Duration: return "duration";
-    case hil::Session::EndReason::Stopped: return "stopped";
-    case hil::Session::EndReason::FlightStackGone: return "flight_stack_gone";
-    case hil::Session::EndReason::TrajectoryDone: return "trajectory_done";
-    case hil::Session::EndReason::TrajectoryFailed: return "trajectory_failed";
-  }
-  return "?";
-}
-
-/// --tui: the session on its own thread, the dashboard on this one; either ending ends both.
-Expected<hil::Session::EndReason> run_with_dashboard(const GlobalOptions& global, hil::Session& session, const SimOptions& opt) {
-  tui::SimDashboardConfig dc;
-  dc.trajectory_file = opt.trajectory_file;
-  dc.trajectory_mode = vehicle::to_string(opt.session.trajectory_mode);
-  if (auto exe = tui::own_executable()) dc.hitl_binary = *exe;
-  tui::SimDashboard dashboard(session, opt.session, dc);
-  std::atomic<bool> stop{false};
-  Expected<hil::Session::EndReason> end = Error{"not run"};
-  std::thread loop([&] {
-    end = session.run(stop, dashboard);
-    dashboard.mark_finished(end ? std::string("the session ended (") + end_name(*end) + ")" : "error: " + end.error().message);
-  });
-  auto shown = tui::run_dashboard(dashboard, &dashboard);
-  stop.store(true);
-  loop.join();
-  dashboard.shutdown();
-  if (!shown) {
-    log_error("sim", "--tui: " + shown.error().message);
-    return end;
-  }
-  if (shown->reason == tui::DashboardEnd::Reason::Signal) std::cerr << "hitl sim: stopped by " << shown->detail << '\n';
-  if (global.verbosity >= 1)
-    log_info(global, tui::format("hitl sim: the dashboard drew %llu frames, %.2f ms each on average, %.2f ms at most",
-                                 static_cast<unsigned long long>(shown->frames), shown->render_ms_mean, shown->render_ms_max));
-  return end;
 }
 
 int run_sim(const GlobalOptions& global, SimOptions& opt) {
@@ -309,7 +272,10 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   log_info(global, "hitl sim: " + (*session)->describe() + (opt.tui ? "" : " (Ctrl-C to stop)"));
   Expected<hil::Session::EndReason> end = Error{"not run"};
   if (opt.tui) {
-    end = run_with_dashboard(global, **session, opt);
+    tui::SimDashboardConfig dc;
+    dc.trajectory_file = opt.trajectory_file;
+    dc.trajectory_mode = vehicle::to_string(opt.session.trajectory_mode);
+    end = run_session_with_dashboard(global, cmd, **session, opt.session, dc);
   } else {
     SimPrinter printer(global);
     end = (*session)->run(stop, printer);
@@ -329,14 +295,22 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   }
   if (global.json) {
     auto j = snapshot_json(snap, true);
-    j["end"] = end_name(*end);
+    j["end"] = end_reason_name(*end);
     if (tunnel) j["adb"] = adb_tunnel_json(*tunnel);
     print_json_line(j);
   } else {
-    print_summary(snap, end_name(*end));
+    print_summary(snap, end_reason_name(*end));
     if (tunnel) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
   }
   if (!snap.record_error.empty()) log_error(cmd, "--record: " + snap.record_error + "; the recording is incomplete");
+  // Every send refused: the session ran, but nothing it simulated reached anyone.
+  uint64_t delivered = 0;
+  for (const auto& [name, c] : snap.sent) delivered += c.count;
+  if (snap.send_errors > 0 && delivered == 0) {
+    log_error(cmd, "nothing was delivered: all " + std::to_string(snap.send_errors) + " messages failed to send (" +
+                       snap.last_send_error + ")");
+    return kExitFailed;
+  }
   const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed ||
                       !snap.record_error.empty();
   return failed ? kExitFailed : kExitOk;

@@ -31,8 +31,8 @@ _hitl_options() {
         'params export') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params load') echo '-h --help --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params reset') echo '-h --help --dry-run --strict --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'arm') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --force --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'disarm') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --force --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'arm') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --force --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'disarm') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --force --version --json -v --verbose -q --quiet --dialect --config' ;;
         'shell') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout -c --command --command-timeout --ignore-status --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly takeoff') echo '-h --help --alt --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -41,7 +41,7 @@ _hitl_options() {
         'fly trajectory') echo '-h --help --rate --mode --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
 }
@@ -113,6 +113,7 @@ _hitl_value() {
         'arm|--session-port') echo 'text' ;;
         'arm|--sysid') echo 'text' ;;
         'arm|--timeout') echo 'text' ;;
+        'arm|--wait') echo 'text' ;;
         'disarm|--connect') echo 'text' ;;
         'disarm|-i'|'disarm|--target-ip') echo 'text' ;;
         'disarm|--port') echo 'text' ;;
@@ -120,6 +121,7 @@ _hitl_value() {
         'disarm|--session-port') echo 'text' ;;
         'disarm|--sysid') echo 'text' ;;
         'disarm|--timeout') echo 'text' ;;
+        'disarm|--wait') echo 'text' ;;
         'shell|--connect') echo 'text' ;;
         'shell|-i'|'shell|--target-ip') echo 'text' ;;
         'shell|--port') echo 'text' ;;

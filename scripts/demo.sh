@@ -6,7 +6,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DHITL_BUILD_TESTS=OFF -DHITL_BUILD_BENCH=OFF >/dev/null
+# A fresh tree is configured for hitl alone (no tests, no benchmarks: quicker). A build/ that exists
+# (./scripts/test.sh's) is used as it is: the demo never changes its options.
+if [ ! -f build/CMakeCache.txt ]; then
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DHITL_BUILD_TESTS=OFF -DHITL_BUILD_BENCH=OFF >/dev/null
+fi
 cmake --build build -j"$(nproc)" --target hitl
 echo
 echo "== hitl demo: an EMULATED VOXL2 board (not PX4) and the Simbody x500 fly a 5 m square"

@@ -1,5 +1,7 @@
 #include "tui/board_clients.h"
 
+#include <thread>
+
 #include "engine/vehicle/patient_link.h"
 #include "target/core/hil_split.h"
 #include "tui/collect.h"
@@ -59,9 +61,17 @@ BoardClients::BoardClients(uint16_t clients_port, std::optional<uint8_t> truth_s
 BoardClients::~BoardClients() { stop(); }
 
 void BoardClients::stop() {
-  if (commands_) commands_->stop();
-  if (shell_) shell_->stop();
+  // All three at once: each may be in the middle of a wait (up to 0.2 s), and quitting should not
+  // take the sum of them.
+  std::thread commands([this] {
+    if (commands_) commands_->stop();
+  });
+  std::thread shell([this] {
+    if (shell_) shell_->stop();
+  });
   if (feed_) feed_->stop();
+  commands.join();
+  shell.join();
 }
 
 std::optional<std::string> BoardClients::link_refusal() const {

@@ -151,6 +151,7 @@ DashboardModel BridgeDashboard::collect() {
       {"clients", count(h->clients)},
       {"in", count(board.packets_in) + " pkt"},
       {"out", count(board.packets_out) + " pkt"},
+      {"send err", count(board.send_errors), board.send_errors ? Health::Bad : Health::Good},
       {"dups", count(h->duplicates), h->duplicates ? Health::Degraded : Health::Good},
       {"links", count(h->links.size())},
   };

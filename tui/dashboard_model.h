@@ -92,7 +92,7 @@ struct VehiclePanel {
 enum class Severity { Info, Notice, Warning, Error };
 
 struct LogLine {
-  double t_s = 0;                  ///< on the dashboard's clock (seconds since it started)
+  double t_s = 0;                  ///< on the dashboard's clock (simulated seconds for sim and demo; else since it started)
   Severity severity = Severity::Info;
   std::string text;
 };

@@ -15,12 +15,23 @@ Severity severity_from_mavlink(uint8_t mav_severity) {
 
 MessageLog::MessageLog() : start_s_(monotonic_s()) {}
 
+void MessageLog::set_clock(std::function<double()> clock_s) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  clock_s_ = std::move(clock_s);
+}
+
 void MessageLog::add(Severity severity, const std::string& text) {
   std::string clean = text;
   for (char& c : clean)  // text from the network never reaches the terminal as control bytes
     if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) c = ' ';
+  std::function<double()> clock_s;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    clock_s = clock_s_;
+  }
+  const double t_s = clock_s ? clock_s() : monotonic_s() - start_s_;  // outside the lock: the clock may take its own
   std::lock_guard<std::mutex> lock(mutex_);
-  lines_.push_back({monotonic_s() - start_s_, severity, std::move(clean)});
+  lines_.push_back({t_s, severity, std::move(clean)});
   while (lines_.size() > kCapacity) lines_.pop_front();
 }
 

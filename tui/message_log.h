@@ -1,10 +1,12 @@
 // The messages panel's lines, written from any thread (session events, the autopilot's
 // STATUSTEXT, action outcomes, shell output) and copied whole by the drawing thread. Keeps the
-// newest kCapacity lines; stamps each with seconds since the log was made.
+// newest kCapacity lines; stamps each with seconds since the log was made, or with the clock it is
+// given (the sim dashboard: simulated time, the header's clock).
 #pragma once
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -24,11 +26,14 @@ class MessageLog {
   /// Several lines (shell output): one entry per line, blank lines dropped.
   void add_lines(Severity severity, const std::string& text);
   std::vector<LogLine> lines() const;
+  /// Stamps later lines with `clock_s()` (seconds) instead of the time since the log was made.
+  void set_clock(std::function<double()> clock_s);
 
  private:
   mutable std::mutex mutex_;
   std::deque<LogLine> lines_;
   double start_s_;
+  std::function<double()> clock_s_;
 };
 
 }  // namespace hitl::tui

@@ -1,4 +1,5 @@
 // Data paths: one row per path, expected against measured rate, jitter, loss, coloured by health.
+#include <algorithm>
 #include <cmath>
 
 #include "tui/draw.h"
@@ -23,8 +24,18 @@ void draw_paths(Screen& screen, const Rect& r, const PathsPanel& panel) {
     show_count = true;
     used += 11;
   }
-  const int name_w = show_gap && used + 3 <= in.w ? 11 : kName;  // room for "actuators"
+  int name_w = show_gap && used + 3 <= in.w ? 11 : kName;  // room for "actuators"
   if (name_w > kName) used += name_w - kName;
+  // Whole names before the message column (a bridge's "tx udp:127.0.0.1:14550"), as room allows.
+  std::size_t longest = 0;
+  for (const auto& row : panel.rows) longest = std::max(longest, row.name.size() + 1);
+  if (static_cast<int>(longest) > name_w) {
+    const int extra = std::min(static_cast<int>(longest) - name_w, in.w - used);
+    if (extra > 0) {
+      name_w += extra;
+      used += extra;
+    }
+  }
   if (used + 23 <= in.w) show_message = true;
   std::string header = fit("path", name_w);
   if (show_message) header += fit("message", 23);

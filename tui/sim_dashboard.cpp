@@ -13,7 +13,9 @@ SimDashboard::SimDashboard(hil::Session& session, const hil::SessionConfig& conf
       config_(config),
       dashboard_(std::move(dashboard)),
       board_(config_.clients_port, config_.sysid, dsp_hitl_rates(config_.vehicle.sensors), log_) {
-  log_.add(Severity::Info, "hitl sim: " + session_.describe() + "; ? for the keys");
+  // One clock on the screen: the header's simulated time stamps the messages too (and the reset's).
+  log_.set_clock([this] { return session_.snapshot().sim_time_s; });
+  log_.add(Severity::Info, dashboard_.title + ": " + session_.describe() + "; ? for the keys");
 }
 
 SimDashboard::~SimDashboard() { shutdown(); }
@@ -47,7 +49,7 @@ std::optional<std::string> SimDashboard::refusal(Action action) const {
       if (!trajectory_.running()) return "no trajectory is being flown";
       return std::nullopt;
     case Action::FlyTrajectory:
-      if (dashboard_.trajectory_file.empty()) return "no trajectory file: start hitl sim --tui with -t FILE.json";
+      if (dashboard_.trajectory_file.empty()) return "no trajectory file: " + dashboard_.no_trajectory_hint;
       if (dashboard_.hitl_binary.empty()) return "cannot find the hitl program to run `hitl fly trajectory`";
       return board_.link_refusal();
     case Action::Arm:
@@ -98,12 +100,15 @@ void SimDashboard::perform(Action action, const std::string& argument) {
 DashboardModel SimDashboard::collect() {
   const hil::SessionSnapshot s = session_.snapshot();
   DashboardModel m;
-  m.title = "hitl sim";
+  m.title = dashboard_.title;
   m.actions = true;
   const double pace = s.speed > 0 ? s.speed : (s.recent_real_time_factor > 0 ? s.recent_real_time_factor : 1.0);
   if (s.paused) {
     m.state = "PAUSED";
     m.state_health = Health::Degraded;
+  } else if (!s.connected && s.send_errors > 0) {
+    m.state = "cannot send to the flight stack (see Messages)";
+    m.state_health = Health::Bad;
   } else if (!s.connected) {
     m.state = "no answer from the flight stack";
     m.state_health = Health::Bad;
@@ -115,8 +120,6 @@ DashboardModel SimDashboard::collect() {
   m.paths = paths_from(s.paths, s.paused,
                        "expected at " + pace_text + (s.lockstep ? ", lockstep" : "") + "; loss: frames from the board");
 
-  // The truth's altitude above the rest pose (the vehicle starts at rest at home).
-  if (!rest_altitude_m_ && s.steps > 0) rest_altitude_m_ = s.altitude_m;
 
   board_.fill(m, pace);
   if (config_.clients_port == 0) m.vehicle->armed = s.armed;  // no autopilot link: the actuator flags' armed bit
@@ -124,7 +127,7 @@ DashboardModel SimDashboard::collect() {
   m.vehicle->motors = s.motor_commands;
   m.vehicle->rotor_speed_rad_s = s.rotor_speed_rad_s;
   for (const auto& r : config_.vehicle.rotors) m.vehicle->rotor_max_rad_s = std::max(m.vehicle->rotor_max_rad_s, r.max_rot_velocity_rad_s);
-  if (rest_altitude_m_) m.vehicle->truth_altitude_m = s.altitude_m - *rest_altitude_m_;
+  if (s.steps > 0) m.vehicle->truth_altitude_m = s.altitude_m;  // above home at rest, as the estimate
 
   m.trajectory_running = trajectory_.running();
   if (m.trajectory_running) m.busy = "flying " + dashboard_.trajectory_file;
@@ -150,6 +153,7 @@ DashboardModel SimDashboard::collect() {
       {"clamped", count(s.actuator_clamped), flag(s.actuator_clamped)},
       {"crc err", count(s.crc_errors + s.parse_errors), flag(s.crc_errors + s.parse_errors)},
       {"lockstep", s.lockstep ? count(s.lockstep_fallbacks) + " fb" : "off", flag(s.lockstep_fallbacks)},
+      {"send err", count(s.send_errors), flag(s.send_errors)},
       {"avg rtf", format("%.2f", s.real_time_factor)},
       {"max late", format("%.1f ms", s.max_lateness_ms)},
       {"clients", count(s.clients)},

@@ -19,6 +19,8 @@
 namespace hitl::tui {
 
 struct SimDashboardConfig {
+  std::string title = "hitl sim";  ///< the header's name (`hitl demo` for the demo)
+  std::string no_trajectory_hint = "start hitl sim --tui with -t FILE.json";  ///< what `f` says without a file
   std::string trajectory_file;  ///< -t FILE for `f` (empty: `f` says how to give one)
   std::string trajectory_mode = "velocity";  ///< --trajectory-mode, passed on as `fly trajectory --mode`
   std::string hitl_binary;      ///< the program `f` runs (own_executable())
@@ -53,7 +55,6 @@ class SimDashboard : public DashboardSource, public DashboardActions, public hil
   BoardClients board_;
   CommandRunner trajectory_;
   std::atomic<bool> trajectory_flying_{false};
-  std::optional<double> rest_altitude_m_;  ///< the truth's altitude at rest (first snapshot)
   mutable std::mutex finished_mutex_;
   std::optional<std::string> finished_;
 };

@@ -283,6 +283,11 @@ class Bridge {
     timesync_sent_ns_.push_back(ts.ts1);
     if (timesync_sent_ns_.size() > kTimesyncRemembered) timesync_sent_ns_.pop_front();
     send_own(board_link_, ts);
+    // Each destination's first refused send, said at once; later ones are counted (send_errors).
+    for (const auto& text : board_->take_send_errors()) observer_.on_event(text, true);
+    for (const auto& e : endpoints_)
+      if (e->udp)
+        for (const auto& text : e->udp->take_send_errors()) observer_.on_event("--endpoint " + e->spec.text + ": " + text, true);
     observer_.on_health(health(now));
   }
 
@@ -296,7 +301,7 @@ class Bridge {
       const auto& s = tracker.stats();
       h.loss[key] = SourceLoss{s.received, s.lost, 100.0 * s.loss_ratio()};
     }
-    const auto link_health = [&](router::LinkId id, std::string partner, bool connected) {
+    const auto link_health = [&](router::LinkId id, std::string partner, bool connected, const net::UdpEndpoint* udp = nullptr) {
       const auto& c = router_.counters(id);
       LinkHealth l;
       l.name = router_.name(id);
@@ -304,12 +309,13 @@ class Bridge {
       l.connected = connected;
       l.packets_in = c.frames_in;
       l.bytes_in = c.bytes_in;
-      l.packets_out = c.frames_out;
+      l.send_errors = udp != nullptr ? udp->stats().send_errors : 0;  // one frame a datagram on these links
+      l.packets_out = c.frames_out - std::min(c.frames_out, l.send_errors);
       l.bytes_out = c.bytes_out;
       l.duplicates_in = c.duplicates_in;
       return l;
     };
-    h.links.push_back(link_health(board_link_, board_address_->to_string(), last_frame_s_ >= 0 && !gone_));
+    h.links.push_back(link_health(board_link_, board_address_->to_string(), last_frame_s_ >= 0 && !gone_, &*board_));
     if (clients_) {
       h.clients = clients_->client_count();
       h.links.push_back(link_health(clients_link_, clients_->local_address()->to_string(), h.clients > 0));
@@ -318,7 +324,8 @@ class Bridge {
       std::string partner;
       if (e->udp && e->udp->partner()) partner = e->udp->partner()->to_string();
       if (e->tcp_address) partner = e->tcp_address->to_string();
-      h.links.push_back(link_health(e->link, partner, e->udp ? e->udp->partner().has_value() : e->tcp.has_value()));
+      h.links.push_back(link_health(e->link, partner, e->udp ? e->udp->partner().has_value() : e->tcp.has_value(),
+                                    e->udp ? &*e->udp : nullptr));
     }
     h.duplicates = router_.duplicates();
     h.ignored_other_address = ignored_other_address_;
@@ -351,9 +358,10 @@ class Bridge {
 
 }  // namespace
 
-Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop) {
+Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop, bool* opened) {
   Bridge bridge(config, observer);
   if (auto st = bridge.open(); !st) return st;
+  if (opened != nullptr) *opened = true;
   observer.on_event(bridge.describe(), false);
   return bridge.run(stop);
 }

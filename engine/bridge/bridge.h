@@ -51,6 +51,7 @@ struct LinkHealth {
   std::string partner;  ///< peer address, or "" when none yet
   bool connected = false;
   uint64_t packets_in = 0, bytes_in = 0, packets_out = 0, bytes_out = 0, duplicates_in = 0;
+  uint64_t send_errors = 0;  ///< packets the kernel refused to send (not in packets_out)
 };
 
 struct BridgeHealth {
@@ -74,6 +75,8 @@ class BridgeObserver {
 };
 
 /// Runs until `stop` is set, the duration ends, or an error (a port in use, a bad address).
-Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop);
+/// `opened` (when given) turns true once every socket is open: an error before that is bad input
+/// (a port in use, a bad address: exit 2), one after it is the link's (exit 1).
+Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const std::atomic<bool>& stop, bool* opened = nullptr);
 
 }  // namespace hitl::bridge

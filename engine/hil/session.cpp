@@ -97,7 +97,11 @@ struct Session::Impl {
   double time_offset_s = 0;      ///< simulated time before the last reset: the wire's clock never goes back
   uint64_t resets = 0;
 
+  double rest_altitude_m = 0;  ///< the body origin's height at rest at home: altitude 0, as PX4's local position
   std::map<uint32_t, Counter> sent;
+  std::map<uint32_t, uint64_t> batch;  ///< messages in the HIL datagram being built: sent once it is
+  uint64_t send_errors = 0;
+  std::string last_send_error;
   std::map<uint32_t, Counter> received;
   uint64_t ignored_other_address = 0;
   uint64_t lockstep_waits = 0;
@@ -157,12 +161,32 @@ struct Session::Impl {
     const std::size_t n = encoder.encode(message, buf);
     if (n == 0) return;
     const std::span<const uint8_t> bytes(buf.data(), n);
-    if (sitl_tcp) tcp_tx.insert(tcp_tx.end(), bytes.begin(), bytes.end());
-    else (void)hil_udp->queue(bytes);
     record(bytes);
-    auto& c = sent[M::kId];
-    ++c.count;
-    ++c.window;
+    if (sitl_tcp) {
+      tcp_tx.insert(tcp_tx.end(), bytes.begin(), bytes.end());
+      count_sent(M::kId, 1);
+    } else {
+      queue_to_stack(bytes);
+      ++batch[M::kId];  // counted as sent when its datagram is
+    }
+  }
+
+  void count_sent(uint32_t id, uint64_t n) {
+    auto& c = sent[id];
+    c.count += n;
+    c.window += n;
+  }
+
+  void count_failed(uint64_t n, const std::string& why) {
+    send_errors += n;
+    last_send_error = why;
+  }
+
+  /// Into the HIL datagram being built; a full one is sent first (and its messages counted).
+  void queue_to_stack(std::span<const uint8_t> bytes) {
+    if (hil_udp->queued_bytes() > 0 && hil_udp->queued_bytes() + bytes.size() > net::UdpEndpoint::kMaxDatagram)
+      flush_to_stack();
+    (void)hil_udp->queue(bytes);  // never sends: the batch has room
   }
 
   template <class M>
@@ -170,11 +194,9 @@ struct Session::Impl {
     mavlink::FrameBuffer buf;
     const std::size_t n = vio_encoder.encode(message, buf);
     if (n == 0) return;
-    (void)vio->send({buf.data(), n});
     record({buf.data(), n});
-    auto& c = sent[M::kId];
-    ++c.count;
-    ++c.window;
+    if (auto st = vio->send({buf.data(), n}); st) count_sent(M::kId, 1);
+    else count_failed(1, st.error().message);
   }
 
   void flush_to_stack() {
@@ -182,13 +204,25 @@ struct Session::Impl {
       if (!tcp_tx.empty() && sitl_tcp->connected() && !sitl_tcp->send(tcp_tx)) stack_gone = true;
       tcp_tx.clear();
     } else {
-      (void)hil_udp->flush();
+      const auto st = hil_udp->flush();
+      for (const auto& [id, n] : batch) {
+        if (st) count_sent(id, n);
+        else count_failed(n, st.error().message);
+      }
+      batch.clear();
     }
+  }
+
+  /// Each destination's first failed send, said at once (later ones are counted: send_errors).
+  void report_send_errors(Observer& observer) {
+    for (auto* ep : {hil_udp ? &*hil_udp : nullptr, vio ? &*vio : nullptr})
+      if (ep != nullptr)
+        for (const auto& text : ep->take_send_errors()) observer.on_event({Severity::Error, text});
   }
 
   void forward_to_stack(std::span<const uint8_t> bytes) {
     if (sitl_tcp) tcp_tx.insert(tcp_tx.end(), bytes.begin(), bytes.end());
-    else (void)hil_udp->queue(bytes);
+    else queue_to_stack(bytes);
     record(bytes);
     ++routed_to_board;
   }
@@ -499,6 +533,7 @@ struct Session::Impl {
       mavlink::FrameBuffer buf;
       if (const std::size_t n = truth_encoder.encode(odometry, buf)) clients->broadcast({buf.data(), n});
     }
+    report_send_errors(observer);
     if (!warned_no_answer && first_sensor_wall_s >= 0 && !actuators.ever_received() &&
         monotonic_s() - first_sensor_wall_s > config.no_answer_warning_s) {
       warned_no_answer = true;
@@ -534,6 +569,16 @@ struct Session::Impl {
   }
 
   std::string no_answer_text() const {
+    uint64_t delivered = 0;
+    for (const auto& [id, c] : sent) delivered += c.count;
+    if (send_errors > 0 && delivered == 0)
+      return "no HIL_ACTUATOR_CONTROLS: nothing reached the flight stack, every send failed (" +
+             std::to_string(send_errors) + " messages; " + last_send_error + ")";
+    if (send_errors > 0) return no_answer_cause() + "; and " + std::to_string(send_errors) + " messages could not be sent (" + last_send_error + ")";
+    return no_answer_cause();
+  }
+
+  std::string no_answer_cause() const {
     if (sitl())
       return "no HIL_ACTUATOR_CONTROLS from PX4 SITL yet; still sending. Is PX4 started with a simulator "
              "airframe (e.g. 10016 none_iris)?";
@@ -554,14 +599,16 @@ struct Session::Impl {
     s.recent_real_time_factor = recent_rtf;
     for (const auto& [id, c] : sent) s.sent[name_of(id)] = StreamCount{c.count, c.rate_hz};
     for (const auto& [id, c] : received) s.received[name_of(id)] = StreamCount{c.count, c.rate_hz};
+    s.send_errors = send_errors;
+    s.last_send_error = last_send_error;
     s.connected = sitl_tcp ? sitl_tcp->connected() : actuators.ever_received();
     if (sitl_tcp && sitl_tcp->client()) s.partner = sitl_tcp->client()->to_string();
     else if (target) s.partner = target->to_string();
     s.armed = actuators.armed();
     s.motor_commands = actuators.last_controls();
     s.rotor_speed_rad_s = st.rotor_speed_rad_s;
-    s.altitude_m = st.p_ENU_m.z();
-    s.p_NED_m = {st.p_ENU_m.y(), st.p_ENU_m.x(), -st.p_ENU_m.z()};
+    s.altitude_m = st.p_ENU_m.z() - rest_altitude_m;
+    s.p_NED_m = {st.p_ENU_m.y(), st.p_ENU_m.x(), -s.altitude_m};
     s.on_ground = st.on_ground;
     s.steps = st.step;
     s.late_ticks = pacer->stats().late;
@@ -638,6 +685,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   if (!mc) return mc.error();
   impl->model = std::move(mc.value());
   impl->sensors.emplace(vehicle, config.world, config.seed);
+  impl->rest_altitude_m = impl->model->state().p_ENU_m.z();
   impl->encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
   impl->vio_encoder = mavlink::FrameEncoder(config.sysid, kVioComponentId, config.protocol);
   impl->truth_encoder = mavlink::FrameEncoder(config.sysid, config.compid, config.protocol);
@@ -762,9 +810,19 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
                            (fifo && locked ? "" : " (run as root or grant CAP_SYS_NICE and CAP_IPC_LOCK)")});
   }
   if (s.sitl_tcp) {
-    observer.on_event({Severity::Info, "waiting for PX4 SITL to connect to TCP " + s.sitl_tcp->local_address().to_string()});
+    observer.on_event({Severity::Info, "waiting for PX4 SITL to connect to TCP " + s.sitl_tcp->local_address().to_string() +
+                                           "; start PX4 now, in its build tree: PX4_SYS_AUTOSTART=10016 "
+                                           "PX4_SIM_MODEL=none_iris build/px4_sitl_default/bin/px4 (docs/sim.md adds the "
+                                           "x500 geometry as PX4_PARAM_ variables)"});
+    const double wait_start_s = monotonic_s();
+    double next_note_s = wait_start_s + 10.0;
     while (!s.sitl_tcp->accept_client(200)) {
       if (stop.load()) return EndReason::Stopped;
+      if (monotonic_s() >= next_note_s) {
+        next_note_s += 10.0;
+        observer.on_event({Severity::Info, "still waiting for PX4 SITL on TCP " + std::to_string(s.sitl_tcp->local_address().port()) +
+                                               " (" + std::to_string(static_cast<int>(monotonic_s() - wait_start_s)) + " s)"});
+      }
     }
     observer.on_event({Severity::Info, "PX4 SITL connected from " + s.sitl_tcp->client()->to_string()});
   }

@@ -38,13 +38,15 @@ struct SessionSnapshot {
   double recent_real_time_factor = 0;  ///< over the last window
   std::map<std::string, StreamCount> sent;      ///< by message name
   std::map<std::string, StreamCount> received;  ///< from the flight stack, by message name
+  uint64_t send_errors = 0;             ///< messages the kernel refused to send (never counted in `sent`)
+  std::string last_send_error;          ///< the latest refusal in words (errno, likely fix); empty when none
   bool connected = false;               ///< SITL: PX4 connected; board: actuators arriving
   std::string partner;                  ///< the flight stack's address
   bool armed = false;
   std::array<double, 4> motor_commands{};
   std::array<double, 4> rotor_speed_rad_s{};
-  double altitude_m = 0;                ///< above home (ground truth)
-  std::array<double, 3> p_NED_m{};
+  double altitude_m = 0;                ///< above home at rest: 0 on the ground, as PX4's local position (truth)
+  std::array<double, 3> p_NED_m{};      ///< from home at rest (the same origin as altitude_m)
   std::array<double, 4> q_FRD_to_NED{1, 0, 0, 0};
   bool on_ground = true;
   uint64_t steps = 0;

@@ -95,10 +95,11 @@ void Inspector::handle(const mavlink::Frame& frame, const std::string& source, i
   observer.on_frame(frame, source, t_ns);
 }
 
-void Inspector::send_heartbeat() {
+void Inspector::send_heartbeat(Observer& observer) {
   mavlink::FrameBuffer buf;
   const std::size_t n = encoder_.encode(mavlink::gcs_heartbeat(), buf);
-  (void)endpoint_->send({buf.data(), n});  // an unreachable board shows as silence, not as an error
+  (void)endpoint_->send({buf.data(), n});
+  for (const auto& text : endpoint_->take_send_errors()) observer.on_send_error(text);
 }
 
 telemetry::TrafficSummary Inspector::summary() const {
@@ -127,7 +128,7 @@ Expected<Inspector::EndReason> Inspector::run_live(const std::atomic<bool>& stop
                             ? start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.duration_s))
                             : Clock::time_point::max();
   const bool connect = config_.source == InspectConfig::Source::Connect;
-  if (connect) send_heartbeat();
+  if (connect) send_heartbeat(observer);
   while (!stop.load()) {
     const auto now = Clock::now();
     const auto until = std::min({next_tick, deadline, now + std::chrono::milliseconds(200)});
@@ -147,7 +148,7 @@ Expected<Inspector::EndReason> Inspector::run_live(const std::atomic<bool>& stop
     if (after >= deadline) return EndReason::Duration;
     if (after >= next_tick) {
       next_tick += std::chrono::seconds(1);
-      if (connect) send_heartbeat();
+      if (connect) send_heartbeat(observer);
       stats_.roll(now_ns_);
       observer.on_tick(summary());
     }

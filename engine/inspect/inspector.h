@@ -48,6 +48,8 @@ class Inspector {
     virtual void on_notice(const std::string& /*text*/) {}
     /// Once a second of wall time, with the stats so far.
     virtual void on_tick(const telemetry::TrafficSummary& /*summary*/) {}
+    /// --connect: the first refused send to the partner, at once (errno and the likely fix).
+    virtual void on_send_error(const std::string& /*text*/) {}
   };
   enum class EndReason { Duration, Count, EndOfLog, Stopped };
 
@@ -63,13 +65,15 @@ class Inspector {
   bool record_failed() const { return recorder_ && !recorder_->ok(); }
   /// Why (mavlink::TlogWriter::error(): the file and errno's words), empty while ok.
   std::string record_error() const { return recorder_ ? recorder_->error() : std::string(); }
+  /// --connect: HEARTBEATs the kernel refused to send (an unreachable partner).
+  uint64_t send_errors() const { return endpoint_ ? endpoint_->stats().send_errors : 0; }
 
  private:
   Inspector(const InspectConfig& config, const mavlink::MessageSet& messages);
   Expected<EndReason> run_live(const std::atomic<bool>& stop, Observer& observer);
   Expected<EndReason> run_tlog(const std::atomic<bool>& stop, Observer& observer);
   void handle(const mavlink::Frame& frame, const std::string& source, int64_t t_ns, Observer& observer);
-  void send_heartbeat();
+  void send_heartbeat(Observer& observer);
   bool counted_out() const { return config_.count > 0 && counted_ >= config_.count; }
 
   InspectConfig config_;

@@ -1,11 +1,13 @@
 #include "engine/net/udp_endpoint.h"
 
 #include "engine/common/clock.h"
+#include "engine/net/send_error.h"
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -152,9 +154,16 @@ Status UdpEndpoint::send_to(const SocketAddress& to, std::span<const uint8_t> by
       stats_.bytes_out += static_cast<uint64_t>(n);
       return Ok{};
     }
-    if (errno == EINTR) continue;
+    const int error = errno;
+    if (error == EINTR) continue;
     ++stats_.send_errors;
-    return Error{config_.name + ": cannot send to " + to.to_string() + ": " + std::strerror(errno)};
+    stats_.last_send_errno = error;
+    std::string text = config_.name + ": " + describe_send_error(error, local_, to);
+    if (std::find(failed_destinations_.begin(), failed_destinations_.end(), to) == failed_destinations_.end()) {
+      failed_destinations_.push_back(to);
+      unreported_send_errors_.push_back(text);
+    }
+    return Error{std::move(text)};
   }
 }
 
@@ -164,10 +173,16 @@ Status UdpEndpoint::send(std::span<const uint8_t> bytes) {
 }
 
 Status UdpEndpoint::queue(std::span<const uint8_t> frame) {
-  if (!tx_batch_.empty() && tx_batch_.size() + frame.size() > kMaxDatagram)
-    if (auto st = flush(); !st) return st;
+  Status st = Ok{};
+  if (!tx_batch_.empty() && tx_batch_.size() + frame.size() > kMaxDatagram) st = flush();
   tx_batch_.insert(tx_batch_.end(), frame.begin(), frame.end());
-  return Ok{};
+  return st;
+}
+
+std::vector<std::string> UdpEndpoint::take_send_errors() {
+  std::vector<std::string> out;
+  out.swap(unreported_send_errors_);
+  return out;
 }
 
 Status UdpEndpoint::flush() {

@@ -25,7 +25,8 @@ struct EndpointStats {
   uint64_t datagrams_out = 0;
   uint64_t bytes_in = 0;
   uint64_t bytes_out = 0;
-  uint64_t send_errors = 0;
+  uint64_t send_errors = 0;  ///< datagrams the kernel refused (never counted in datagrams_out)
+  int last_send_errno = 0;   ///< the latest refusal's errno, 0 when none
   uint64_t partner_changes = 0;
 };
 
@@ -68,6 +69,12 @@ class UdpEndpoint {
   Status queue(std::span<const uint8_t> frame);
   /// Sends what queue() collected as one datagram.
   Status flush();
+  /// Bytes queue() holds for the next datagram.
+  std::size_t queued_bytes() const { return tx_batch_.size(); }
+
+  /// The first failed send to each destination, once each, in words (errno and the likely fix,
+  /// net::describe_send_error): for the caller to say at once. Later failures are only counted.
+  std::vector<std::string> take_send_errors();
 
   const std::optional<SocketAddress>& partner() const { return partner_; }
   void set_partner(const SocketAddress& address) { partner_ = address; }
@@ -90,6 +97,8 @@ class UdpEndpoint {
   EndpointStats stats_;
   std::vector<uint8_t> rx_buffer_;
   std::vector<uint8_t> tx_batch_;
+  std::vector<SocketAddress> failed_destinations_;
+  std::vector<std::string> unreported_send_errors_;
 };
 
 }  // namespace hitl::net

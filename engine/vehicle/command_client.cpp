@@ -1,5 +1,7 @@
 #include "engine/vehicle/command_client.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstring>
 #include <optional>
@@ -26,6 +28,15 @@ std::string CommandOutcome::text() const {
   std::string out = to_string(result);
   if (!accepted() && !statustexts.empty()) out += ": " + statustexts.back();
   return out;
+}
+
+bool CommandOutcome::pending() const {
+  if (result != mavlink::MavResult::TemporarilyRejected && result != mavlink::MavResult::Denied) return false;
+  std::string t = text();
+  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* word : {"preflight", "not ready", "ekf", "gps", "aligned", "estimat", "pending", "calibrat"})
+    if (t.find(word) != std::string::npos) return true;
+  return false;
 }
 
 Expected<CommandOutcome> CommandClient::send(uint16_t command, const std::array<float, 7>& p, double timeout_s, int retries,

@@ -21,6 +21,9 @@ struct CommandOutcome {
   /// "accepted" / "temporarily rejected: Preflight Fail: ekf2 not aligned"
   std::string text() const;
   bool accepted() const { return result == mavlink::MavResult::Accepted; }
+  /// A refusal that goes away by itself (the estimator or GPS still converging: "Preflight Fail:
+  /// ekf2 not aligned", "GPS checks pending"), not one that needs the operator.
+  bool pending() const;
 };
 
 class CommandClient {

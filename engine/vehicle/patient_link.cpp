@@ -9,9 +9,11 @@ namespace hitl::vehicle {
 
 std::unique_ptr<VehicleLink> connect_patiently(const LinkOptions& options, const std::atomic<bool>& stop,
                                                const std::function<void(const std::string&)>& waiting) {
+  LinkOptions stoppable = options;
+  stoppable.stop = &stop;  // a discovery in progress ends when asked to stop
   while (!stop.load()) {
     const double started_s = monotonic_s();
-    auto link = VehicleLink::connect(options);
+    auto link = VehicleLink::connect(stoppable);
     if (link) return std::move(link.value());
     if (waiting) waiting(link.error().message);
     // A refused port fails at once: do not spin, try again about every second.

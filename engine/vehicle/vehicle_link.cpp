@@ -63,8 +63,8 @@ void VehicleLink::heartbeat() {
 void VehicleLink::send_bytes(std::span<const uint8_t> bytes) {
   if (tcp_) {
     if (!closed_ && !tcp_->send(bytes)) closed_ = true;
-  } else {
-    (void)udp_->send(bytes);
+  } else if (auto st = udp_->send(bytes); !st && send_error_.empty()) {
+    send_error_ = st.error().message;  // the first refusal, errno and the likely fix
   }
 }
 
@@ -81,7 +81,11 @@ bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
   };
   for (;;) {
     if (closed_) return false;
+    if (options_.stop != nullptr && options_.stop->load()) return false;
     if (monotonic_s() - last_heartbeat_s_ >= 1.0) heartbeat();
+    // Nothing could be sent and nothing came: no answer will come, so do not wait for one.
+    if (udp_ && udp_->stats().datagrams_out == 0 && udp_->stats().send_errors > 0 && udp_->stats().datagrams_in == 0)
+      return false;
     const double left = end - monotonic_s();
     if (left <= 0) return false;
     const int wait_ms = static_cast<int>(std::min(left, 0.2) * 1000) + 1;
@@ -162,7 +166,9 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
   } else {
     return Error{"--connect: '" + spec + "' is not auto, udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT"};
   }
-  if (!link->discover(options.timeout_s))
+  const bool found = link->discover(options.timeout_s);
+  if (!found && !link->send_error_.empty()) return Error{"no autopilot " + link->description() + ": " + link->send_error_};
+  if (!found)
     return Error{"no autopilot HEARTBEAT " + link->description() + " within " + std::to_string(static_cast<int>(options.timeout_s)) +
                  " s. Is the board up (or `hitl target` running)? A PX4 MAVLink instance answers only the first address "
                  "and port it heard: if another tool talked to it first from another port, restart PX4 on the board "

@@ -9,6 +9,7 @@
 // The autopilot is discovered from its HEARTBEAT (autopilot != MAV_AUTOPILOT_INVALID).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -38,6 +39,9 @@ struct LinkOptions {
   double timeout_s = 5.0;                 ///< --timeout: discovery
   uint8_t own_sysid = 255;                ///< our identity: a ground station
   uint8_t own_compid = 190;
+  /// When set and true, every wait (discovery too) ends within 0.2 s: a dashboard quitting does not
+  /// wait out a discovery timeout.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 class VehicleLink {
@@ -68,6 +72,7 @@ class VehicleLink {
   VehicleLink(std::optional<net::UdpEndpoint> udp, std::optional<net::TcpClient> tcp, const LinkOptions& options,
               std::string description);
   void send_bytes(std::span<const uint8_t> bytes);
+  std::string send_error_;  ///< the first refused send (UDP), said when no answer came
   void heartbeat();
   bool discover(double timeout_s);
 

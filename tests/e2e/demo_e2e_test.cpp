@@ -1,5 +1,7 @@
 // hitl demo: the README's first command flies the square on an emulated board and reports.
 #include <gtest/gtest.h>
+
+#include <csignal>
 #include <nlohmann/json.hpp>
 
 #include "tests/support/json_lines.h"
@@ -12,7 +14,7 @@ TEST(DemoE2E, FliesTheSquareAndReports) {
   auto r = test::run_hitl({"--json", "demo"}, std::chrono::seconds(240));
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto j = test::last_json_line(r.out);
-  EXPECT_EQ(j["type"], "demo");
+  EXPECT_EQ(j["type"], "summary");
   EXPECT_TRUE(j["ok"].get<bool>());
   EXPECT_EQ(j["trajectory"]["state"], "DONE");
   // Against truth, flying on truth: measured RMS 0.34 m, max 0.81 m.
@@ -26,6 +28,19 @@ TEST(DemoE2E, FliesTheSquareAndReports) {
   EXPECT_GT(j["estimate_error"]["position_samples"].get<uint64_t>(), 10u);
   EXPECT_LT(j["estimate_error"]["horizontal_rms_m"].get<double>(), 2.0);
   EXPECT_EQ(j["board"]["malformed"], 0);
+}
+
+// Stopped before it flew, the demo has measured nothing: it says n/a (JSON: null), not zeros.
+TEST(DemoE2E, StoppedEarlyReportsNotApplicableNotZeros) {
+  test::Process demo({test::hitl_binary(), "demo", "--speed", "1"});
+  ASSERT_TRUE(demo.wait_for_stderr("Ctrl-C stops everything", std::chrono::seconds(20))) << demo.err();
+  demo.signal(SIGINT);
+  EXPECT_EQ(demo.wait(std::chrono::seconds(30)), 1) << demo.err();
+  const std::string out = demo.out();
+  EXPECT_NE(out.find("demo did not finish"), std::string::npos) << out;
+  EXPECT_NE(out.find("tracking error against truth   RMS n/a, max n/a (0 samples)"), std::string::npos) << out;
+  EXPECT_NE(out.find("horizontal RMS n/a"), std::string::npos) << out;
+  EXPECT_EQ(out.find("RMS 0.00 m"), std::string::npos) << out;
 }
 
 TEST(DemoE2E, ABadTrajectoryFileIsRefused) {

@@ -51,7 +51,7 @@ TEST(InspectE2E, Phase1CheckPassesAtTheExpectedRate) {
   sender.stop();
   const auto j = last_json(p);
   EXPECT_EQ(code, 0) << p.out() << p.err();
-  EXPECT_EQ(j["type"], "final");
+  EXPECT_EQ(j["type"], "summary");
   EXPECT_EQ(j["end"], "duration");
   EXPECT_NEAR(j["duration_s"].get<double>(), 3.0, 0.5);
   const auto& odo = j["messages"]["ODOMETRY"];
@@ -68,9 +68,9 @@ TEST(InspectE2E, Phase1CheckPassesAtTheExpectedRate) {
   EXPECT_EQ(j["sources"][0]["lost"], 0);
   EXPECT_TRUE(j["expect"][0]["ok"].get<bool>());
   EXPECT_TRUE(j["ok"].get<bool>());
-  // Periodic summaries came before the final one.
+  // Status objects each second, then exactly one summary, last.
   EXPECT_GE(p.out_lines().size(), 3u);
-  EXPECT_EQ(nlohmann::json::parse(p.out_lines().front())["type"], "summary");
+  EXPECT_EQ(nlohmann::json::parse(p.out_lines().front())["type"], "status");
 }
 
 TEST(InspectE2E, ExpectationNotMetExitsOneAndSaysWhich) {
@@ -209,7 +209,7 @@ TEST(InspectE2E, CtrlCPrintsTheFinalSummary) {
   p.signal(SIGINT);
   EXPECT_EQ(p.wait(10s), 0);
   const auto j = last_json(p);
-  EXPECT_EQ(j["type"], "final");
+  EXPECT_EQ(j["type"], "summary");
   EXPECT_EQ(j["end"], "stopped");
   EXPECT_EQ(j["messages"]["ODOMETRY"]["count"], 1);
 }

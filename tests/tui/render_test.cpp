@@ -199,6 +199,15 @@ TEST(Render, WideAndTallAt200x60) {
   EXPECT_EQ(s.find("in 900").second, s.find("out 1000").second + 1);
 }
 
+// A bridge's link names are shown whole when the panel has room (issue 18: they were cut to 8).
+TEST(Render, LongPathNamesAreShownWholeWhenThereIsRoom) {
+  auto m = test::sample_model();
+  m.paths.rows.push_back(test::path("tx udp:127.0.0.1:14550", "to 127.0.0.1:14550", 0, 50.0, Health::Good));
+  const auto s = draw(200, 60, m);
+  SCOPED_TRACE(s.dump());
+  EXPECT_GE(s.find("tx udp:127.0.0.1:14550").second, 0);
+}
+
 TEST(Render, MonochromeTerminalsStillTellTheGradesApart) {
   const Style good{Color::Good, false, false}, warn{Color::Warning, false, false}, bad{Color::Bad, false, false};
   // Without colours: plain, bold, bold standout.

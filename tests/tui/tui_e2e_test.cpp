@@ -185,6 +185,23 @@ TEST(TuiE2E, BridgeDashboardShowsTheLinkAndActsThroughItsClientPort) {
   board.wait(10s);
 }
 
+// `hitl demo --tui` (README, scripts/demo.sh, the guide): the sim dashboard on the demo's flight,
+// which arms and flies by itself; when the square is done the dashboard closes and the report follows.
+TEST(TuiE2E, DemoDashboardFliesTheSquareThenReports) {
+  const std::string tmux_bin = tmux_path();
+  if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  Tmux tmux(tmux_bin);
+  const std::string demo = quoted(test::hitl_binary()) + " demo --tui --speed 4; echo HITL_EXIT=$?; sleep 60";
+  tmux.run({"new-session", "-d", "-s", "dash", "-x", "120", "-y", "40", demo});
+  std::string s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
+  EXPECT_NE(s.find("hitl demo"), std::string::npos) << s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("ARMED") != std::string::npos; }, 120s, &s)) << s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 240s, &s)) << s;
+  EXPECT_NE(s.find("demo flown"), std::string::npos) << s;
+  EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
+}
+
 TEST(TuiE2E, WithoutATerminalSaysSoAndFallsBack) {
   const uint16_t hil = test::free_udp_port();
   auto r = test::run_hitl({"sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",

@@ -1,0 +1,157 @@
+#include "cli/parse_errors.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <regex>
+
+namespace hitl::cli {
+namespace {
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::vector<CLI::App*> subcommands_of(CLI::App* app) {
+  return app->get_subcommands([](CLI::App*) { return true; });
+}
+
+CLI::App* subcommand_named(CLI::App* app, const std::string& name) {
+  for (auto* sub : subcommands_of(app))
+    if (sub->get_name() == name) return sub;
+  return nullptr;
+}
+
+const CLI::Option* option_in(const std::vector<CLI::App*>& chain, const std::string& name) {
+  for (auto* a : chain)
+    if (const auto* o = a->get_option_no_throw(name)) return o;
+  return nullptr;
+}
+
+std::string command_path(const std::vector<CLI::App*>& chain) {
+  std::string path;
+  for (auto* a : chain) path += (path.empty() ? "" : " ") + a->get_name();
+  return path;
+}
+
+std::string did_you_mean(const std::optional<std::string>& guess) { return guess ? "; did you mean '" + *guess + "'?" : ""; }
+
+/// "1797693134...368.000000" -> "1.8e+308"; "0.000000" -> "0".
+std::string plain_number(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str()) return text;
+  char out[32];
+  std::snprintf(out, sizeof out, "%g", v);
+  return out;
+}
+
+std::string explain_config(CLI::App& app, const std::string& what, const std::string& file) {
+  const std::string prefix = "INI was not able to parse ";
+  if (what.rfind(prefix, 0) != 0) return {};
+  const std::string item = what.substr(prefix.size());
+  const auto dot = item.rfind('.');
+  const std::string section = dot == std::string::npos ? "" : item.substr(0, dot);
+  const std::string key = dot == std::string::npos ? item : item.substr(dot + 1);
+  // Where in the file: the line that sets the key (or holds the text TOML could not read).
+  int line_no = 0;
+  std::ifstream in(file);
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    const auto start = line.find_first_not_of(" \t");
+    if (start == std::string::npos) continue;
+    const std::string rest = line.substr(start);
+    if (rest.rfind(key, 0) == 0 && (rest.size() == key.size() || std::string(" \t=").find(rest[key.size()]) != std::string::npos)) {
+      line_no = n;
+      break;
+    }
+  }
+  const std::string where = (file.empty() ? std::string("--config") : file) + (line_no ? ":" + std::to_string(line_no) : "");
+  // The section's command: its options' long names are the keys it takes.
+  CLI::App* cmd = &app;
+  std::stringstream parts(section);
+  for (std::string part; std::getline(parts, part, '.');)
+    if (auto* sub = cmd != nullptr ? subcommand_named(cmd, part) : nullptr) cmd = sub;
+  std::vector<std::string> keys;
+  for (const auto* o : cmd->get_options())
+    for (const auto& l : o->get_lnames()) keys.push_back(l);
+  if (section.empty() && subcommand_named(&app, key) != nullptr)
+    return "hitl: " + where + ": '" + key + "' is not TOML: a section is written [" + key + "] (docs/config.md)";
+  return "hitl: " + where + ": unknown key '" + key + "'" + (section.empty() ? "" : " in [" + section + "]") + did_you_mean(closest(key, keys)) +
+         " (the file is TOML: key = value under [command] sections; docs/config.md lists every key)";
+}
+
+}  // namespace
+
+std::optional<std::string> closest(const std::string& word, const std::vector<std::string>& candidates) {
+  std::optional<std::string> best;
+  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best_distance) {
+      best_distance = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+std::string explain_parse_error(CLI::App& app, const CLI::ParseError& error, const std::vector<std::string>& args,
+                                const std::string& config_file) {
+  const std::string what = error.what();
+  if (auto config = explain_config(app, what, config_file); !config.empty()) return config;
+
+  // A range check with DBL_MAX written out in full: plain numbers instead.
+  static const std::regex range(R"(^(\S+): Value (.*) not in range (\S+) to (\S+)$)");
+  std::smatch m;
+  if (std::regex_match(what, m, range)) {
+    const std::string low = plain_number(m[3].str()), high = plain_number(m[4].str());
+    const bool unbounded = std::strtod(m[4].str().c_str(), nullptr) > 1e300;
+    return "hitl: " + m[1].str() + ": " + m[2].str() + " is out of range: give a number " +
+           (unbounded ? (low == "0" ? std::string(">= 0") : ">= " + low) : "from " + low + " to " + high);
+  }
+
+  // A word that is no command or option of where it was typed.
+  std::vector<CLI::App*> chain{&app};
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& t = args[i];
+    if (t.size() > 1 && t[0] == '-') {
+      const std::string name = t.substr(0, t.find('='));
+      const auto* o = option_in(chain, name);
+      if (o == nullptr && t.rfind("--", 0) == 0) {
+        std::vector<std::string> names;
+        for (auto* a : chain)
+          for (const auto* opt : a->get_options())
+            for (const auto& l : opt->get_lnames()) names.push_back("--" + l);
+        return command_path(chain) + ": unknown option '" + name + "'" + did_you_mean(closest(name, names));
+      }
+      if (o != nullptr && t.find('=') == std::string::npos && o->get_expected_min() > 0) ++i;  // its value
+      continue;
+    }
+    if (auto* sub = subcommand_named(chain.back(), t)) {
+      chain.push_back(sub);
+      continue;
+    }
+    const auto subs = subcommands_of(chain.back());
+    if (!subs.empty()) {
+      std::vector<std::string> names;
+      for (auto* s : subs) names.push_back(s->get_name());
+      return command_path(chain) + ": unknown command '" + t + "'" + did_you_mean(closest(t, names)) + " (" +
+             command_path(chain) + " --help lists them)";
+    }
+  }
+  return {};
+}
+
+}  // namespace hitl::cli
