@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "cli/number_check.h"
 #include "engine/common/clock.h"
 #include "engine/mavlink/enums.h"
 #include "engine/vehicle/command_client.h"
@@ -86,7 +87,7 @@ void add_arm_commands(CLI::App& app, GlobalOptions& options, RunState& state) {
     sub->add_option("--wait", o->wait_s,
                     "Retry for up to S seconds while the board's preflight checks are pending (EKF alignment, GPS), "
                     "printing what it waits for; then fail with the last reason")
-        ->type_name("S")->check(CLI::NonNegativeNumber);
+        ->type_name("S")->check(non_negative_number());
     sub->add_flag("--force", o->force, arm ? "Skip the preflight checks (PX4's 21196)" : "Disarm even in the air (PX4's 21196)");
     sub->callback([&options, &state, o, arm]() { state.exit_code = run_arm(options, *o, arm); });
   }

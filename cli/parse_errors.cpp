@@ -1,9 +1,7 @@
 #include "cli/parse_errors.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
-#include <regex>
 
 namespace hitl::cli {
 namespace {
@@ -46,16 +44,6 @@ std::string command_path(const std::vector<CLI::App*>& chain) {
 }
 
 std::string did_you_mean(const std::optional<std::string>& guess) { return guess ? "; did you mean '" + *guess + "'?" : ""; }
-
-/// "1797693134...368.000000" -> "1.8e+308"; "0.000000" -> "0".
-std::string plain_number(const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end == text.c_str()) return text;
-  char out[32];
-  std::snprintf(out, sizeof out, "%g", v);
-  return out;
-}
 
 std::string explain_config(CLI::App& app, const std::string& what, const std::string& file) {
   const std::string prefix = "INI was not able to parse ";
@@ -112,15 +100,7 @@ std::string explain_parse_error(CLI::App& app, const CLI::ParseError& error, con
   const std::string what = error.what();
   if (auto config = explain_config(app, what, config_file); !config.empty()) return config;
 
-  // A range check with DBL_MAX written out in full: plain numbers instead.
-  static const std::regex range(R"(^(\S+): Value (.*) not in range (\S+) to (\S+)$)");
-  std::smatch m;
-  if (std::regex_match(what, m, range)) {
-    const std::string low = plain_number(m[3].str()), high = plain_number(m[4].str());
-    const bool unbounded = std::strtod(m[4].str().c_str(), nullptr) > 1e300;
-    return "hitl: " + m[1].str() + ": " + m[2].str() + " is out of range: give a number " +
-           (unbounded ? (low == "0" ? std::string(">= 0") : ">= " + low) : "from " + low + " to " + high);
-  }
+  // Number ranges are said plainly where they are checked (cli/number_check.h), not rewritten here.
 
   // A word that is no command or option of where it was typed.
   std::vector<CLI::App*> chain{&app};
