@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <optional>
 
 #include "cli/commands.h"
+#include "cli/line_editor.h"
 #include "cli/link_options.h"
 #include "cli/number_check.h"
 #include "engine/vehicle/shell_client.h"
@@ -50,14 +52,24 @@ int run_shell(const GlobalOptions& g, const ShellOptions& o) {
   };
   auto exit_code = [&] { return failed_on_board && !o.ignore_status ? kExitFailed : kExitOk; };
   if (!o.command.empty()) return one(o.command) ? exit_code() : kExitFailed;
-  const bool tty = ::isatty(STDIN_FILENO) == 1;
-  std::string line;
-  for (;;) {
-    if (tty) std::cout << "pxh> " << std::flush;
-    if (!std::getline(std::cin, line)) break;
-    if (line == "exit" || line == "quit") break;
-    if (line.empty()) continue;
-    if (!one(line)) return kExitFailed;
+  // At a terminal: line editing, Up/Down and Ctrl-R over a history kept between runs (libedit).
+  // Piped: lines as they come, no prompt, as before.
+  std::optional<LineEditor> editor;
+  if (::isatty(STDIN_FILENO) == 1) editor.emplace(shell_history_path());
+  auto next_line = [&]() -> std::optional<std::string> {
+    if (editor) {
+      auto typed = editor->read("pxh> ");
+      if (!typed) std::cout << '\n' << std::flush;  // Ctrl-D: the next prompt of the terminal starts on its own line
+      return typed;
+    }
+    std::string line;
+    if (!std::getline(std::cin, line)) return std::nullopt;
+    return line;
+  };
+  while (auto line = next_line()) {
+    if (*line == "exit" || *line == "quit") break;
+    if (line->empty()) continue;
+    if (!one(*line)) return kExitFailed;
   }
   return exit_code();  // 1 when any command returned non-zero on the board
 }
