@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "cli/parse_errors.h"
 #include "engine/vehicle/firmware_version.h"
 #include "engine/vehicle/param_client.h"
 #include "engine/vehicle/param_notes.h"
@@ -75,6 +76,22 @@ std::optional<std::vector<vehicle::Param>> download(const GlobalOptions& g, Sess
     return std::nullopt;
   }
   return std::move(all.value());
+}
+
+/// Why `get` of `name` failed, in words: when the board's list has no such name, says so with the
+/// closest name it has ("did you mean 'SYS_HITL'?", parse_errors' closest()); else the client's error.
+std::string explain_get_failure(Session& s, const std::string& name, const std::string& error) {
+  auto all = s.client->download();
+  if (!all) return error;
+  std::vector<std::string> names;
+  names.reserve(all->size());
+  for (const auto& p : *all) {
+    if (p.name == name) return error;  // it exists: the failure was the answer, not the name
+    names.push_back(p.name);
+  }
+  const auto guess = closest(name, names);
+  return "the board has no parameter " + name + " (" + std::to_string(names.size()) + " downloaded)" +
+         (guess ? "; did you mean '" + *guess + "'?" : "; `hitl params show 'PREFIX*'` lists them");
 }
 
 /// "this firmware (v1.16.0)" or "this firmware" when AUTOPILOT_VERSION does not come.
@@ -190,7 +207,7 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
   if (action == "get") {
     auto v = s->client->get(upper(o.name));
     if (!v) {
-      log_error("params", v.error().message);
+      log_error("params", explain_get_failure(*s, upper(o.name), v.error().message));
       return kExitFailed;
     }
     if (g.json) print_json_line({{"type", "param"}, {"name", upper(o.name)}, {"value", to_json(*v)}});
@@ -201,7 +218,7 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
     const std::string name = upper(o.name);
     auto current = s->client->get(name);
     if (!current) {
-      log_error("params", current.error().message);
+      log_error("params", explain_get_failure(*s, name, current.error().message));
       return kExitFailed;
     }
     const auto wanted = vehicle::parse_param_value(o.value, current->type);
