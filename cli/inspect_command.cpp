@@ -13,6 +13,7 @@
 #include "cli/traffic_table.h"
 #include "cli/value_types.h"
 #include "engine/inspect/expectations.h"
+#include "engine/inspect/frame_text.h"
 #include "engine/inspect/inspector.h"
 #include "engine/mavlink/field_format.h"
 #include "engine/telemetry/traffic_json.h"
@@ -66,10 +67,10 @@ class InspectPrinter : public inspect::Inspector::Observer {
     if (!shown(frame.msgid)) return;
     if (options_.follow) {
       if (global_.json) print_json_line(frame_json(frame, source, t_ns));
-      else std::cout << mavlink::format_message(frame) << '\n';
+      else std::cout << inspect::frame_text(frame) << '\n';
       return;
     }
-    latest_[frame.msgid] = {mavlink::format_message(frame), frame_json(frame, source, t_ns)};
+    latest_[frame.msgid] = {inspect::frame_text(frame), frame_json(frame, source, t_ns)};
   }
 
   void on_notice(const std::string& text) override { std::cerr << "hitl inspect: " << text << '\n'; }
@@ -116,7 +117,7 @@ class InspectPrinter : public inspect::Inspector::Observer {
                 << (frame.version == mavlink::Version::V1 ? " (MAVLink 1)" : "") << '\n';
     if (ids_.size() < telemetry::kMaxMessageIds && ids_.insert(frame.msgid).second) std::cerr << "new message " << name << " from " << source << '\n';
     if (global_.verbosity >= 2)
-      std::cerr << source << " seq " << int{frame.seq} << " " << mavlink::format_message(frame) << '\n';
+      std::cerr << source << " seq " << int{frame.seq} << " " << inspect::frame_text(frame) << '\n';
   }
 
   bool shown(uint32_t id) const {
@@ -341,7 +342,7 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
       ->capture_default_str()
       ->group("Connection");
   sub->add_option("--record", opt->record, "Save every frame received to a .tlog")->type_name("FILE.tlog");
-  sub->add_option("--show", opt->show, "Print decoded fields of these messages (latest, or each with --follow)")
+  sub->add_option("--show", opt->show, "Print decoded fields of these messages, enums by name, a line each (latest, or each with --follow)")
       ->delimiter(',')
       ->type_name(value_type::kMessageList);
   sub->add_flag("--follow", opt->follow, "With --show: print every matching message as it arrives");

@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/link_options.h"
+#include "cli/parse_errors.h"
 #include "engine/vehicle/firmware_version.h"
 #include "engine/vehicle/param_client.h"
 #include "engine/vehicle/param_notes.h"
@@ -45,16 +46,45 @@ std::string upper(std::string s) {
   return s;
 }
 
+/// What a run says when it ends: errors on stderr and, with --json, the one summary every command
+/// ends with (README: status objects while running, exactly one {"type":"summary"} last):
+/// {"type":"summary","command":"params","action":"get",...}. A run that ends on an error without one
+/// gets {"ok":false,"error":...} (finish()).
+struct Report {
+  const GlobalOptions& g;
+  std::string action;
+  bool summarised = false;
+  std::string first_error;
+
+  void fail(const std::string& message) {
+    log_error("params", message);
+    if (first_error.empty()) first_error = message;
+  }
+  void summary(nlohmann::json body) {
+    if (!g.json) return;
+    body["type"] = "summary";
+    body["command"] = "params";
+    body["action"] = action;
+    if (!body.contains("ok")) body["ok"] = true;
+    print_json_line(body);
+    summarised = true;
+  }
+  void finish() {
+    if (g.json && !summarised) summary({{"ok", false}, {"error", first_error}});
+  }
+};
+
 /// Connects and downloads, saying how; an error line and nullopt on failure.
 struct Session {
   std::unique_ptr<vehicle::VehicleLink> link;
   std::unique_ptr<vehicle::ParamClient> client;
 };
 
-std::optional<Session> open(const GlobalOptions& g, const ParamsOptions& o) {
+std::optional<Session> open(Report& report, const ParamsOptions& o) {
+  const GlobalOptions& g = report.g;
   auto link = vehicle::VehicleLink::connect(o.link);
   if (!link) {
-    log_error("params", link.error().message);
+    report.fail(link.error().message);
     return std::nullopt;
   }
   log_info(g, "hitl params: autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
@@ -64,17 +94,34 @@ std::optional<Session> open(const GlobalOptions& g, const ParamsOptions& o) {
   return s;
 }
 
-std::optional<std::vector<vehicle::Param>> download(const GlobalOptions& g, Session& s) {
+std::optional<std::vector<vehicle::Param>> download(Report& report, Session& s) {
+  const GlobalOptions& g = report.g;
   const bool tty = ::isatty(STDERR_FILENO) == 1 && !g.quiet;
   auto all = s.client->download([&](std::size_t n, std::size_t total) {
     if (tty && (n % 25 == 0 || n == total)) std::fprintf(stderr, "\rparameters %zu / %zu", n, total);
   });
   if (tty) std::fprintf(stderr, "\n");
   if (!all) {
-    log_error("params", all.error().message);
+    report.fail(all.error().message);
     return std::nullopt;
   }
   return std::move(all.value());
+}
+
+/// Why `get` of `name` failed, in words: when the board's list has no such name, says so with the
+/// closest name it has ("did you mean 'SYS_HITL'?", parse_errors' closest()); else the client's error.
+std::string explain_get_failure(Session& s, const std::string& name, const std::string& error) {
+  auto all = s.client->download();
+  if (!all) return error;
+  std::vector<std::string> names;
+  names.reserve(all->size());
+  for (const auto& p : *all) {
+    if (p.name == name) return error;  // it exists: the failure was the answer, not the name
+    names.push_back(p.name);
+  }
+  const auto guess = closest(name, names);
+  return "the board has no parameter " + name + " (" + std::to_string(names.size()) + " downloaded)" +
+         (guess ? "; did you mean '" + *guess + "'?" : "; `hitl params show 'PREFIX*'` lists them");
 }
 
 /// "this firmware (v1.16.0)" or "this firmware" when AUTOPILOT_VERSION does not come.
@@ -89,10 +136,10 @@ nlohmann::json version_json(const std::optional<std::string>& version) {
 /// Pushes `wanted` onto the board: set what differs, verify by read-back, report.
 /// `absent_ok` (reset of the HITL set): a parameter the board does not have is reported as absent,
 /// a failure only with --strict; otherwise (load) it fails.
-int push(const GlobalOptions& g, const ParamsOptions& o, Session& s, const std::vector<vehicle::Param>& wanted, bool absent_ok,
-         const char* what) {
+int push(Report& report, const ParamsOptions& o, Session& s, const std::vector<vehicle::Param>& wanted, bool absent_ok) {
+  const GlobalOptions& g = report.g;
   const bool dry_run = o.dry_run;
-  auto board = download(g, s);
+  auto board = download(report, s);
   if (!board) return kExitFailed;
   std::map<std::string, vehicle::ParamValue> current;
   for (const auto& p : *board) current[p.name] = p.value;
@@ -127,13 +174,13 @@ int push(const GlobalOptions& g, const ParamsOptions& o, Session& s, const std::
   }
   const bool ok = failed.empty() && (absent.empty() || !o.strict);
   if (g.json) {
-    nlohmann::json out = {{"type", what}, {"dry_run", dry_run}, {"set", set}, {"unchanged", unchanged}, {"failed", failed}, {"ok", ok}};
+    nlohmann::json out = {{"dry_run", dry_run}, {"set", set}, {"unchanged", unchanged}, {"failed", failed}, {"ok", ok}};
     if (absent_ok) {
       out["absent"] = absent;
       out["firmware"] = version_json(firmware);
       out["strict"] = o.strict;
     }
-    print_json_line(out);
+    report.summary(out);
   } else {
     for (const auto& e : set)
       std::cout << (dry_run ? "would set " : "set ") << e["name"].get<std::string>() << ": " << e["from_text"].get<std::string>()
@@ -151,29 +198,30 @@ int push(const GlobalOptions& g, const ParamsOptions& o, Session& s, const std::
   return ok ? kExitOk : kExitFailed;
 }
 
-int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& action) {
+int run_action(Report& report, const ParamsOptions& o, const std::string& action) {
+  const GlobalOptions& g = report.g;
   // A bad file is refused before anything talks to the board.
   std::optional<Expected<std::vector<vehicle::Param>>> file;
   if (action == "load") {
     file.emplace(vehicle::load_params_file(o.file));
     if (!*file) {
-      log_error("params", (*file).error().message);
+      report.fail((*file).error().message);
       return kExitUsage;
     }
   }
-  auto s = open(g, o);
+  auto s = open(report, o);
   if (!s) return kExitFailed;
   if (action == "show" || action == "export") {
-    auto all = download(g, *s);
+    auto all = download(report, *s);
     if (!all) return kExitFailed;
     if (action == "export") {
       std::ofstream f(o.file);
       f << vehicle::format_params(*all, s->link->target_sysid(), s->link->target_compid());
       if (!f) {
-        log_error("params", "cannot write '" + o.file + "'");
+        report.fail("cannot write '" + o.file + "'");
         return kExitFailed;
       }
-      if (g.json) print_json_line({{"type", "export"}, {"file", o.file}, {"count", all->size()}});
+      if (g.json) report.summary({{"file", o.file}, {"count", all->size()}});
       else std::cout << "exported " << all->size() << " parameters to " << o.file << '\n';
       return kExitOk;
     }
@@ -184,16 +232,16 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
       if (g.json) params[p.name] = to_json(p.value);
       else std::printf("%-16s %s\n", p.name.c_str(), p.value.to_string().c_str());
     }
-    if (g.json) print_json_line({{"type", "params"}, {"params", params}});
+    if (g.json) report.summary({{"params", params}});
     return kExitOk;
   }
   if (action == "get") {
     auto v = s->client->get(upper(o.name));
     if (!v) {
-      log_error("params", v.error().message);
+      report.fail(explain_get_failure(*s, upper(o.name), v.error().message));
       return kExitFailed;
     }
-    if (g.json) print_json_line({{"type", "param"}, {"name", upper(o.name)}, {"value", to_json(*v)}});
+    if (g.json) report.summary({{"name", upper(o.name)}, {"value", to_json(*v)}});
     else std::cout << v->to_string() << '\n';
     return kExitOk;
   }
@@ -201,25 +249,25 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
     const std::string name = upper(o.name);
     auto current = s->client->get(name);
     if (!current) {
-      log_error("params", current.error().message);
+      report.fail(explain_get_failure(*s, name, current.error().message));
       return kExitFailed;
     }
     const auto wanted = vehicle::parse_param_value(o.value, current->type);
     if (!wanted) {
-      log_error("params", "set " + name + ": " + wanted.error().message);
+      report.fail("set " + name + ": " + wanted.error().message);
       return kExitUsage;
     }
     auto r = s->client->set(name, *wanted);
     if (!r) {
-      log_error("params", r.error().message);
+      report.fail(r.error().message);
       return kExitFailed;
     }
-    if (g.json) print_json_line({{"type", "param"}, {"name", name}, {"value", to_json(*r)}, {"previous", to_json(*current)}});
+    if (g.json) report.summary({{"name", name}, {"value", to_json(*r)}, {"previous", to_json(*current)}});
     else std::cout << name << ": " << current->to_string() << " -> " << r->to_string() << '\n';
     return kExitOk;
   }
   if (action == "diff" || action == "check") {
-    auto all = download(g, *s);
+    auto all = download(report, *s);
     if (!all) return kExitFailed;
     const auto checked = vehicle::check_params(*all, vehicle::hitl_default_params());
     std::optional<std::string> firmware;
@@ -239,7 +287,7 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
       rows.push_back(row);
     }
     if (g.json) {
-      print_json_line({{"type", action}, {action == "diff" ? "differences" : "checks", rows}, {"ok", all_ok},
+      report.summary({{action == "diff" ? "differences" : "checks", rows}, {"ok", all_ok},
                        {"absent", absent}, {"firmware", version_json(firmware)}, {"strict", o.strict}});
     } else {
       for (const auto& c : checked) {
@@ -264,8 +312,15 @@ int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& actio
     }
     return all_ok ? kExitOk : kExitFailed;
   }
-  if (action == "load") return push(g, o, *s, **file, false, "load");
-  return push(g, o, *s, vehicle::hitl_default_params(), true, "reset");
+  if (action == "load") return push(report, o, *s, **file, false);
+  return push(report, o, *s, vehicle::hitl_default_params(), true);
+}
+
+int run(const GlobalOptions& g, const ParamsOptions& o, const std::string& action) {
+  Report report{g, action};
+  const int code = run_action(report, o, action);
+  report.finish();
+  return code;
 }
 
 }  // namespace

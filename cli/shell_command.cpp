@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <optional>
 
 #include "cli/commands.h"
+#include "cli/line_editor.h"
 #include "cli/link_options.h"
 #include "cli/number_check.h"
 #include "engine/vehicle/shell_client.h"
@@ -21,10 +23,30 @@ struct ShellOptions {
   bool ignore_status = false;
 };
 
-int run_shell(const GlobalOptions& g, const ShellOptions& o) {
+/// --json: one {"type":"shell",...} item per command, then exactly one summary, last (also when it
+/// ends on an error): {"type":"summary","command":"shell","commands","failed","ok"[,"error"]}.
+struct ShellReport {
+  const GlobalOptions& g;
+  int commands = 0;
+  int failed_on_board = 0;
+  std::string error;
+
+  void fail(const std::string& message) {
+    log_error("shell", message);
+    if (error.empty()) error = message;
+  }
+  void summary(bool ok) const {
+    if (!g.json) return;
+    nlohmann::json j = {{"type", "summary"}, {"command", "shell"}, {"commands", commands}, {"failed", failed_on_board}, {"ok", ok}};
+    if (!error.empty()) j["error"] = error;
+    print_json_line(j);
+  }
+};
+
+int run_shell(const GlobalOptions& g, const ShellOptions& o, ShellReport& report) {
   auto link = vehicle::VehicleLink::connect(o.link);
   if (!link) {
-    log_error("shell", link.error().message);
+    report.fail(link.error().message);
     return kExitFailed;
   }
   log_info(g, "hitl shell: autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
@@ -33,15 +55,17 @@ int run_shell(const GlobalOptions& g, const ShellOptions& o) {
   auto one = [&](const std::string& line) {
     auto out = shell.run(line, o.timeout_s);
     if (!out) {
-      log_error("shell", out.error().message);
+      report.fail(out.error().message);
       return false;
     }
+    ++report.commands;
     const vehicle::ShellStatus status = vehicle::shell_status(*out);
     if (g.json)
       print_json_line({{"type", "shell"}, {"command", line}, {"output", *out}, {"status", status.code}, {"ok", status.code == 0}});
     else std::cout << *out << std::flush;
     if (status.code != 0) {
       failed_on_board = true;
+      ++report.failed_on_board;
       if (!o.ignore_status)
         log_error("shell", "'" + line + "' returned " + std::to_string(status.code) + " on the board (" + status.line +
                                "); --ignore-status to exit 0");
@@ -50,16 +74,33 @@ int run_shell(const GlobalOptions& g, const ShellOptions& o) {
   };
   auto exit_code = [&] { return failed_on_board && !o.ignore_status ? kExitFailed : kExitOk; };
   if (!o.command.empty()) return one(o.command) ? exit_code() : kExitFailed;
-  const bool tty = ::isatty(STDIN_FILENO) == 1;
-  std::string line;
-  for (;;) {
-    if (tty) std::cout << "pxh> " << std::flush;
-    if (!std::getline(std::cin, line)) break;
-    if (line == "exit" || line == "quit") break;
-    if (line.empty()) continue;
-    if (!one(line)) return kExitFailed;
+  // At a terminal: line editing, Up/Down and Ctrl-R over a history kept between runs (libedit).
+  // Piped: lines as they come, no prompt, as before.
+  std::optional<LineEditor> editor;
+  if (::isatty(STDIN_FILENO) == 1) editor.emplace(shell_history_path());
+  auto next_line = [&]() -> std::optional<std::string> {
+    if (editor) {
+      auto typed = editor->read("pxh> ");
+      if (!typed) std::cout << '\n' << std::flush;  // Ctrl-D: the next prompt of the terminal starts on its own line
+      return typed;
+    }
+    std::string line;
+    if (!std::getline(std::cin, line)) return std::nullopt;
+    return line;
+  };
+  while (auto line = next_line()) {
+    if (*line == "exit" || *line == "quit") break;
+    if (line->empty()) continue;
+    if (!one(*line)) return kExitFailed;
   }
   return exit_code();  // 1 when any command returned non-zero on the board
+}
+
+int run_and_report(const GlobalOptions& g, const ShellOptions& o) {
+  ShellReport report{g};
+  const int code = run_shell(g, o, report);
+  report.summary(code == kExitOk);
+  return code;
 }
 
 }  // namespace
@@ -74,7 +115,7 @@ void add_shell_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                 "Exit 0 even when a command returned non-zero on the board (PX4's \"Command 'NAME' failed, returned N.\")");
   sub->footer("Exit: 0 ok, 1 a command returned non-zero on the board (or the shell did not answer).\n"
               "Examples:\n  hitl shell -c \"qshell dsp_hitl status\"\n  hitl shell            # interactive; exit with Ctrl-D or 'exit'");
-  sub->callback([&options, &state, o]() { state.exit_code = run_shell(options, *o); });
+  sub->callback([&options, &state, o]() { state.exit_code = run_and_report(options, *o); });
 }
 
 }  // namespace hitl::cli

@@ -94,7 +94,7 @@ complete -c hitl -n '__hitl_at "inspect"' -s h -l help -d 'Print this help messa
 complete -c hitl -n '__hitl_at "inspect"' -l bind -r -f -d 'Address to listen on with --port'
 complete -c hitl -n '__hitl_at "inspect"' -l local-port -r -f -d 'Local UDP port for --connect'
 complete -c hitl -n '__hitl_at "inspect"' -l record -r -f -a '(__fish_complete_suffix .tlog)' -d 'Save every frame received to a .tlog'
-complete -c hitl -n '__hitl_at "inspect"' -l show -r -f -a '(__fish_append , $__hitl_messages)' -d 'Print decoded fields of these messages'
+complete -c hitl -n '__hitl_at "inspect"' -l show -r -f -a '(__fish_append , $__hitl_messages)' -d 'Print decoded fields of these messages, enums by name, a line each'
 complete -c hitl -n '__hitl_at "inspect"' -l follow -d 'With --show: print every matching message as it arrives'
 complete -c hitl -n '__hitl_at "inspect"' -l tui -d 'The live dashboard'
 complete -c hitl -n '__hitl_at "inspect"' -l duration -r -f -d 'Stop after this many seconds'

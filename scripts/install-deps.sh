@@ -8,7 +8,7 @@ export DEBIAN_FRONTEND=noninteractive
 packages=(
   build-essential cmake ccache pkg-config
   libcli11-dev libeigen3-dev libsimbody-dev libncurses-dev nlohmann-json3-dev
-  libpugixml-dev libgeographiclib-dev
+  libpugixml-dev libgeographiclib-dev libedit-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 if [ "${1:-}" = "--test" ]; then

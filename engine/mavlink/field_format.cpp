@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "engine/mavlink/enum_names.h"
 #include "engine/mavlink/hil_sensor_fields.h"
 #include "engine/mavlink/messages.h"
 
@@ -59,6 +60,34 @@ nlohmann::json element_json(FieldType type, const uint8_t* p) {
   return nullptr;
 }
 
+/// A scalar integer field's value, for the enum names; nullopt for arrays and reals.
+std::optional<uint64_t> integer_value(const FieldDesc& field, const uint8_t* payload) {
+  if (field.array_length != 0) return std::nullopt;
+  const uint8_t* p = payload + field.offset;
+  switch (field.type) {
+    case FieldType::Uint8: return load<uint8_t>(p);
+    case FieldType::Uint16: return load<uint16_t>(p);
+    case FieldType::Uint32: return load<uint32_t>(p);
+    case FieldType::Uint64: return load<uint64_t>(p);
+    case FieldType::Int8: return static_cast<uint64_t>(load<int8_t>(p));
+    case FieldType::Int16: return static_cast<uint64_t>(load<int16_t>(p));
+    case FieldType::Int32: return static_cast<uint64_t>(load<int32_t>(p));
+    case FieldType::Int64: return static_cast<uint64_t>(load<int64_t>(p));
+    case FieldType::Char:
+    case FieldType::Float:
+    case FieldType::Double: return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+/// The field's value by name when it takes values from an enum hitl names.
+std::optional<std::string> enum_text(const FieldDesc& field, const uint8_t* payload) {
+  if (field.enum_name.empty()) return std::nullopt;
+  const auto value = integer_value(field, payload);
+  if (!value) return std::nullopt;
+  return enum_value_name(field.enum_name, *value);
+}
+
 std::string char_array(const FieldDesc& field, const uint8_t* payload) {
   const char* text = reinterpret_cast<const char*>(payload + field.offset);
   std::size_t n = 0;
@@ -93,14 +122,16 @@ std::string format_field(const FieldDesc& field, const uint8_t* payload) {
   return out + "]";
 }
 
-std::string format_message(const Frame& frame) {
+std::string format_message(const Frame& frame, const FieldNamer& namer) {
   if (frame.desc == nullptr) return "#" + std::to_string(frame.msgid) + " (unknown id, " + std::to_string(frame.payload_len) + " bytes)";
   std::string out = frame.desc->name;
   for (const auto& f : frame.desc->fields) {
     out += ' ';
     out += f.name;
     out += '=';
-    out += format_field(f, frame.payload.data());
+    std::optional<std::string> named = namer ? namer(frame, f) : std::nullopt;
+    if (!named) named = enum_text(f, frame.payload.data());
+    out += named ? *named : format_field(f, frame.payload.data());
     if (!f.units.empty()) out += f.units == "%" ? "%" : " " + f.units;
     if (frame.msgid == msg::HilSensor::kId && f.name == "fields_updated") {
       const auto bits = detail::load_le<uint32_t>(frame.payload.data() + f.offset);

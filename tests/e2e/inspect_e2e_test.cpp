@@ -199,6 +199,26 @@ TEST(InspectE2E, ShowFollowPrintsDecodedFieldsAndNamesHilSensorBits) {
   EXPECT_NE(out.find("fields_updated=8191 (accel gyro mag baro diff_pressure)"), std::string::npos) << out;
 }
 
+TEST(InspectE2E, ShowFollowNamesEnumsBitmasksAndThePx4ModeOfTheBoard) {
+  // Issue 18 point 9: against `hitl target`, one line per message with names, not numbers.
+  const std::string hil = std::to_string(test::free_udp_port()), gcs = std::to_string(test::free_udp_port());
+  Process board(args({"target", "--bind", "127.0.0.1", "--hil-port", hil, "--gcs-port", gcs, "--vio-port", "0"}));
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  Process p(args({"inspect", "--connect", "127.0.0.1:" + gcs, "--local-port", std::to_string(test::free_udp_port()),
+                  "--show", "HEARTBEAT,STATUSTEXT", "--follow", "--count", "3", "--duration", "15"}));
+  EXPECT_EQ(p.wait(30s), 0) << p.err();
+  board.signal(SIGINT);
+  board.wait(10s);
+  const auto out = p.out();
+  EXPECT_NE(out.find("HEARTBEAT custom_mode=Hold type=QUADROTOR autopilot=PX4 base_mode=CUSTOM_MODE_ENABLED|"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("system_status=STANDBY"), std::string::npos) << out;
+  EXPECT_NE(out.find("STATUSTEXT severity=NOTICE text=\"hitl target: an emulated VOXL2 board"), std::string::npos) << out;
+  int heartbeat_lines = 0;
+  for (const auto& line : p.out_lines()) heartbeat_lines += line.rfind("HEARTBEAT ", 0) == 0 ? 1 : 0;
+  EXPECT_GE(heartbeat_lines, 2) << out;  // each message on a line of its own
+}
+
 TEST(InspectE2E, CtrlCPrintsTheFinalSummary) {
   const uint16_t port = test::free_udp_port();
   Process p(args({"inspect", "--port", std::to_string(port), "--json"}));

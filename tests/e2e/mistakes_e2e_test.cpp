@@ -3,6 +3,7 @@
 // parser's internals. All exit 2 (bad usage).
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <fstream>
 
 #include "tests/support/process.h"
@@ -21,6 +22,31 @@ TEST(Mistakes, DidYouMean) {
   says({"fly", "takeof"}, "hitl fly: unknown command 'takeof'; did you mean 'takeoff'?");
   says({"sim", "--lockstpe"}, "hitl sim: unknown option '--lockstpe'; did you mean '--lockstep'?");
   says({"--jsn", "sim"}, "did you mean '--json'?");
+}
+
+TEST(Mistakes, DidYouMeanForParameterNamesFromTheBoardsList) {
+  using namespace std::chrono_literals;
+  const std::string gcs = std::to_string(test::free_udp_port()), local = std::to_string(test::free_udp_port());
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(test::free_udp_port()),
+                       "--gcs-port", gcs, "--vio-port", "0"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  const std::vector<std::string> link{"-i", "127.0.0.1", "--port", gcs, "--local-port", local, "--session-port", std::to_string(test::free_udp_port())};
+  auto params = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), "params");
+    args.insert(args.end(), link.begin(), link.end());
+    return test::run_hitl(args, 60s);
+  };
+  const auto set = params({"set", "SYS_HITLL", "1"});
+  EXPECT_EQ(set.exit_code, 1) << set.err;
+  EXPECT_NE(set.err.find("the board has no parameter SYS_HITLL"), std::string::npos) << set.err;
+  EXPECT_NE(set.err.find("did you mean 'SYS_HITL'?"), std::string::npos) << set.err;
+  const auto get = params({"get", "mpc_xy_pp"});  // any case, as the board's names are upper case
+  EXPECT_NE(get.err.find("did you mean 'MPC_XY_P'?"), std::string::npos) << get.err;
+  const auto far = params({"get", "XYZZY_FOO"});  // nothing close: no guess, where to look instead
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+  EXPECT_NE(far.err.find("hitl params show"), std::string::npos) << far.err;
+  board.signal(SIGINT);
+  board.wait(10s);
 }
 
 TEST(Mistakes, RangesInPlainNumbers) {

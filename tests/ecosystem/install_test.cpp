@@ -75,7 +75,7 @@ TEST(Install, CpackBuildsTheHostDebWithDebianDepends) {
   ASSERT_NE(depends_at, std::string::npos) << info.out;
   const auto depends = info.out.substr(depends_at);
   // What the binary links, as Debian packages (found by dpkg-shlibdeps, versioned).
-  for (const char* package : {"libc6 (>=", "libstdc++6 (>=", "libsimbody"})
+  for (const char* package : {"libc6 (>=", "libstdc++6 (>=", "libsimbody", "libedit2"})  // libedit: hitl shell's line editing
     EXPECT_NE(depends.find(package), std::string::npos) << package << " missing from " << depends;
 
   const auto contents = test::run_program({"dpkg-deb", "--contents", debs[0]});

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <fstream>
 
+#include "tests/support/json_lines.h"
 #include "tests/support/process.h"
 
 namespace hitl {
@@ -102,12 +103,19 @@ TEST(OperateE2E, ShellExitStatusFollowsTheBoardsCommand) {
   auto qshell = shell({"-c", "qshell dsp_hitl status"});
   EXPECT_EQ(qshell.exit_code, 1) << qshell.out << qshell.err;
   EXPECT_NE(qshell.out.find("Command 'qshell' failed, returned 1."), std::string::npos) << qshell.out;
-  // --json: the status with the output.
+  // --json: the status with the output, then the one summary.
   auto json = shell({"--json", "-c", "dsp_hitl status"});
   EXPECT_EQ(json.exit_code, 1) << json.err;
-  const auto j = nlohmann::json::parse(json.out);
+  const auto j = nlohmann::json::parse(json.out.substr(0, json.out.find('\n')));
+  EXPECT_EQ(j["type"], "shell");
   EXPECT_EQ(j["status"], 1);
   EXPECT_FALSE(j["ok"].get<bool>());
+  const auto summary = test::last_json_line(json.out);
+  EXPECT_EQ(summary["type"], "summary");
+  EXPECT_EQ(summary["command"], "shell");
+  EXPECT_EQ(summary["commands"], 1);
+  EXPECT_EQ(summary["failed"], 1);
+  EXPECT_FALSE(summary["ok"].get<bool>());
   // --ignore-status: the old behaviour, exit 0 whatever the command returned.
   auto ignored = shell({"--ignore-status", "-c", "dsp_hitl status"});
   EXPECT_EQ(ignored.exit_code, 0) << ignored.err;
