@@ -47,7 +47,7 @@ BoardClients::BoardClients(uint16_t clients_port, std::optional<uint8_t> truth_s
   const auto link = vehicle::session_client_options(clients_port_);
   feed_ = std::make_unique<vehicle::TelemetryFeed>(
       link, vehicle::dashboard_streams(),
-      [this](mavlink::MavSeverity s, const std::string& text) { log_.add(severity_from_mavlink(static_cast<uint8_t>(s)), text); },
+      [this](mavlink::MavSeverity s, const std::string& text) { log_.add_statustext(severity_from_mavlink(static_cast<uint8_t>(s)), "autopilot", text); },
       truth_sysid);
   shell_ = std::make_unique<vehicle::ShellPoller>(link, rates, 1.0, [this](const std::string& command, bool ok, const std::string& output) {
     log_.add(Severity::Notice, "shell> " + command);

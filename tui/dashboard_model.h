@@ -95,6 +95,7 @@ struct LogLine {
   double t_s = 0;                  ///< on the dashboard's clock (simulated seconds for sim and demo; else since it started)
   Severity severity = Severity::Info;
   std::string text;
+  int repeats = 1;                 ///< a STATUSTEXT said this many times within a short window: "(xN)"
 };
 
 struct LinkField {

@@ -14,7 +14,8 @@ void InspectDashboard::on_frame(const mavlink::Frame& frame, const std::string& 
   if (!frame.is<mavlink::msg::Statustext>() || frame.desc == nullptr) return;
   const auto t = frame.as<mavlink::msg::Statustext>();
   const std::string text(t.text.data(), strnlen(t.text.data(), t.text.size()));
-  log_.add(severity_from_mavlink(t.severity), "[" + source + " " + std::to_string(frame.sysid) + "] " + text);
+  const std::string from = source + " " + std::to_string(frame.sysid);
+  log_.add_statustext(severity_from_mavlink(t.severity), from, "[" + from + "] " + text);
 }
 
 void InspectDashboard::on_tick(const telemetry::TrafficSummary& summary) {

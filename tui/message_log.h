@@ -1,7 +1,9 @@
 // The messages panel's lines, written from any thread (session events, the autopilot's
 // STATUSTEXT, action outcomes, shell output) and copied whole by the drawing thread. Keeps the
 // newest kCapacity lines; stamps each with seconds since the log was made, or with the clock it is
-// given (the sim dashboard: simulated time, the header's clock).
+// given (the sim dashboard: simulated time, the header's clock). The autopilot's STATUSTEXT shows
+// once: the same text from the same source again within kRepeatWindow_s (wall clock) of its last
+// showing moves that line to the bottom with a count, "(x3)", instead of adding another.
 #pragma once
 
 #include <cstdint>
@@ -21,8 +23,12 @@ Severity severity_from_mavlink(uint8_t mav_severity);
 class MessageLog {
  public:
   static constexpr std::size_t kCapacity = 500;
-  MessageLog();
+  static constexpr double kRepeatWindow_s = 10.0;
+  /// `wall_s`: the clock the repeat window is measured on (tests give their own).
+  explicit MessageLog(std::function<double()> wall_s = {});
   void add(Severity severity, const std::string& text);
+  /// A STATUSTEXT from `source` (who sent it): repeats within the window are collapsed.
+  void add_statustext(Severity severity, const std::string& source, const std::string& text);
   /// Several lines (shell output): one entry per line, blank lines dropped.
   void add_lines(Severity severity, const std::string& text);
   std::vector<LogLine> lines() const;
@@ -30,8 +36,16 @@ class MessageLog {
   void set_clock(std::function<double()> clock_s);
 
  private:
+  struct Entry {
+    LogLine line;
+    std::string repeat_key;  ///< source and text of a STATUSTEXT; empty for the rest
+    double wall_s = 0;       ///< when it was last shown
+  };
+  void push(Entry entry);
+
   mutable std::mutex mutex_;
-  std::deque<LogLine> lines_;
+  std::deque<Entry> entries_;
+  std::function<double()> wall_s_;
   double start_s_;
   std::function<double()> clock_s_;
 };

@@ -25,7 +25,8 @@ void draw_messages(Screen& screen, const Rect& r, const std::vector<LogLine>& li
   std::vector<std::pair<std::string, Style>> shown;
   for (auto it = lines.rbegin(); it != lines.rend() && static_cast<int>(shown.size()) < in.h; ++it) {
     const std::string stamp = format("%6.1f ", it->t_s);
-    auto wrapped = wrap(it->text, in.w - static_cast<int>(stamp.size()));
+    const std::string text = it->repeats > 1 ? it->text + format(" (x%d)", it->repeats) : it->text;
+    auto wrapped = wrap(text, in.w - static_cast<int>(stamp.size()));
     if (wrapped.empty()) wrapped.emplace_back();
     for (std::size_t k = wrapped.size(); k-- > 0 && static_cast<int>(shown.size()) < in.h;)
       shown.emplace_back((k == 0 ? stamp : std::string(stamp.size(), ' ')) + wrapped[k], severity_style(it->severity));
