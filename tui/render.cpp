@@ -17,6 +17,7 @@ const char* const kHelp[] = {
     "p  pause / resume         r  reset to home (asks when armed)",
     "f  fly the -t trajectory  s  one shell command",
     "?  this help              q  quit",
+    "PgUp PgDn  scroll the messages (Home oldest, End newest)",
     "",
     "Rates: green within 5 % of expected, yellow 5-20 %,",
     "red worse or stale. Test ratios: red from 1 (rejected).",
@@ -91,7 +92,7 @@ void render(Screen& screen, const DashboardModel& model, const Interaction& inte
   if (!l.vehicle.empty() && model.vehicle) draw_vehicle(screen, l.vehicle, *model.vehicle);
   if (!l.ekf.empty() && model.ekf) draw_ekf(screen, l.ekf, *model.ekf);
   if (!l.link.empty()) draw_link(screen, l.link, model.link_partner, model.link_health, model.link);
-  if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages);
+  if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages, interaction.messages_top);
   draw_footer(screen, l.footer, model, interaction);
   if (interaction.mode == Interaction::Mode::Help) draw_help(screen);
   screen.flush();

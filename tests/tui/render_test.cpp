@@ -8,6 +8,8 @@
 #include "tests/tui/sample_model.h"
 #include "tui/collect.h"
 #include "tui/draw.h"
+#include "tui/keys.h"
+#include "tui/panels.h"
 #include "tui/layout.h"
 #include "tui/memory_screen.h"
 #include "tui/ncurses_screen.h"
@@ -177,11 +179,13 @@ TEST(Render, WideAndTallAt200x60) {
   const auto s = draw(200, 60, m);
   SCOPED_TRACE(s.dump());
   const auto l = layout_for(200, 60, m);
-  // Messages take the full width at the bottom, down to the footer.
-  EXPECT_EQ(l.messages.x, 0);
-  EXPECT_EQ(l.messages.w, 200);
+  // Messages use the height there is (issue 18: the EKF was stretched over 20 blank rows while
+  // messages had 6): down the right column under the EKF, to the footer.
+  EXPECT_EQ(l.messages.x, 100);
+  EXPECT_EQ(l.messages.y, l.ekf.y + l.ekf.h);
   EXPECT_EQ(l.messages.y + l.messages.h, 59);
-  EXPECT_EQ(s.find("Messages").first, 2);
+  EXPECT_EQ(l.link.y + l.link.h, 59);
+  EXPECT_EQ(s.find("Messages").first, 102);
   EXPECT_EQ(s.find("Messages").second, l.messages.y);
   // All nine messages fit now, oldest first.
   EXPECT_LT(s.find("line 0").second, s.find("Preflight Fail").second);
@@ -206,6 +210,45 @@ TEST(Render, LongPathNamesAreShownWholeWhenThereIsRoom) {
   const auto s = draw(200, 60, m);
   SCOPED_TRACE(s.dump());
   EXPECT_GE(s.find("tx udp:127.0.0.1:14550").second, 0);
+}
+
+// Issue 18: the messages panel scrolls (PgUp/PgDn, Home, End) and says where it is; lines that
+// arrive while scrolled back do not move the view.
+TEST(Render, MessagesScrollBackAndStayWhileLinesArrive) {
+  auto m = test::sample_model();
+  m.messages.clear();
+  for (int i = 0; i < 40; ++i) m.messages.push_back({1.0 * i, Severity::Info, "entry " + std::to_string(i)});
+  const Rect inner = layout_for(80, 24, m).messages.inner();
+  Dispatcher d;
+  d.set_messages_view(message_row_count(m.messages, inner.w), inner.h);
+  auto shown = [&](const DashboardModel& model) { return draw(80, 24, model, d.interaction()); };
+  EXPECT_GE(shown(m).find("entry 39").second, 0);  // following the newest
+  d.on_key({Key::Kind::PageUp, 0}, m, nullptr);
+  auto s = shown(m);
+  SCOPED_TRACE(s.dump());
+  EXPECT_EQ(s.find("entry 39").second, -1);
+  const int page = inner.h - 1;
+  EXPECT_GE(s.find("entry " + std::to_string(40 - inner.h - page)).second, 0);
+  EXPECT_GE(s.find(", End: newest").second, 0);
+  // New lines do not move what is being read.
+  auto more = m;
+  more.messages.push_back({41.0, Severity::Info, "entry 40"});
+  d.set_messages_view(message_row_count(more.messages, inner.w), inner.h);
+  EXPECT_EQ(shown(more).row(inner.y), s.row(inner.y));
+  d.on_key({Key::Kind::Home, 0}, more, nullptr);
+  EXPECT_GE(shown(more).find("entry 0 ").second, 0);
+  // End follows the newest again; so does PgDn at the bottom.
+  d.on_key({Key::Kind::End, 0}, more, nullptr);
+  EXPECT_FALSE(d.interaction().messages_top);
+  EXPECT_GE(shown(more).find("entry 40").second, 0);
+  d.on_key({Key::Kind::PageUp, 0}, more, nullptr);
+  for (int i = 0; i < 20; ++i) d.on_key({Key::Kind::PageDown, 0}, more, nullptr);
+  EXPECT_FALSE(d.interaction().messages_top);
+  // The scroll survives a question and the help overlay.
+  d.on_key({Key::Kind::Home, 0}, more, nullptr);
+  d.on_key(Key::character('?'), more, nullptr);
+  d.on_key(Key::character('x'), more, nullptr);
+  EXPECT_EQ(d.interaction().messages_top, 0);
 }
 
 TEST(Render, MonochromeTerminalsStillTellTheGradesApart) {
@@ -235,8 +278,16 @@ TEST(Render, ResizeRedrawsForTheNewSize) {
   const auto big = layout_for(120, 40, m);
   EXPECT_FALSE(small.too_small);
   EXPECT_EQ(small.messages.x, 40);  // right column
-  EXPECT_EQ(big.messages.x, 0);     // across the bottom
+  EXPECT_EQ(big.messages.x, 60);    // down the right column: more rows than across the bottom
+  EXPECT_GE(big.messages.h, 20);
   EXPECT_GT(big.messages.h, small.messages.h);
+  // A left column shorter than the right one (no dsp_hitl): messages across the bottom.
+  auto no_dsp = m;
+  no_dsp.dsp_hitl.reset();
+  no_dsp.paths.rows.resize(1);
+  const auto bottom = layout_for(120, 60, no_dsp);
+  EXPECT_EQ(bottom.messages.x, 0);
+  EXPECT_EQ(bottom.messages.w, 120);
   // Panels never overlap and stay on screen.
   for (const auto& l : {small, big}) {
     const Rect panels[] = {l.paths, l.dsp_hitl, l.link, l.vehicle, l.ekf, l.messages};
