@@ -108,7 +108,7 @@ std::optional<std::string> BridgeDashboard::refusal(Action action) const {
 
 void BridgeDashboard::perform(Action action, const std::string& argument) {
   if (auto why = refusal(action)) {
-    log_.add(Severity::Warning, std::string(to_string(action)) + ": " + *why);
+    log_.add_outcome(Severity::Warning, std::string(to_string(action)) + ": " + *why);
     return;
   }
   board_.perform(action, argument);
@@ -127,6 +127,7 @@ DashboardModel BridgeDashboard::collect() {
   board_.fill(m, 1.0);  // the board runs on its own clock: real time
   if (m.ekf && !m.ekf->unavailable) m.ekf->error_note = "no ground truth: hitl bridge runs no simulator";
   m.messages = log_.lines();
+  m.outcome = log_.outcome();
   if (!h) {
     m.state = "starting";
     m.state_health = Health::Degraded;

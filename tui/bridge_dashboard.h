@@ -24,7 +24,7 @@ class BridgeDashboard : public DashboardSource, public DashboardActions, public 
   // DashboardSource
   DashboardModel collect() override;
   std::optional<std::string> finished() override;
-  void note(Severity severity, const std::string& text) override { log_.add(severity, text); }
+  void note(Severity severity, const std::string& text) override { log_.add_outcome(severity, text); }
   // DashboardActions
   std::optional<std::string> refusal(Action action) const override;
   void perform(Action action, const std::string& argument) override;

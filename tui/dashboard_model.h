@@ -120,6 +120,7 @@ struct DashboardModel {
   bool actions = false;            ///< keys act on a vehicle (the footer lists them)
   bool trajectory_running = false; ///< f then asks whether to stop it
   std::string busy;                ///< an action in flight, for the footer ("arming ...")
+  std::optional<LogLine> outcome;  ///< the last key's outcome, pinned in the header
 };
 
 }  // namespace hitl::tui

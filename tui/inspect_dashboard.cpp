@@ -49,6 +49,7 @@ DashboardModel InspectDashboard::collect() {
   m.clock = format("%.1f s", s ? s->duration_s : 0.0);
   m.link_partner = where_;
   m.messages = log_.lines();
+  m.outcome = log_.outcome();
   m.paths.caption = expected_hz_.empty() ? "rates over the last second; --expect NAME=HZ sets what they should be"
                                          : "held to --expect; jitter and max gap since the start";
   if (!s) return m;

@@ -58,6 +58,17 @@ void MessageLog::push(Entry entry) {
 
 void MessageLog::add(Severity severity, const std::string& text) { push({{0, severity, clean(text)}, "", 0}); }
 
+void MessageLog::add_outcome(Severity severity, const std::string& text) {
+  push({{0, severity, clean(text)}, "", 0});
+  std::lock_guard<std::mutex> lock(mutex_);
+  outcome_ = entries_.back().line;
+}
+
+std::optional<LogLine> MessageLog::outcome() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return outcome_;
+}
+
 void MessageLog::add_statustext(Severity severity, const std::string& source, const std::string& text) {
   const std::string line = clean(text);
   push({{0, severity, line}, source + '\n' + line, 0});

@@ -10,6 +10,7 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ class MessageLog {
   void add(Severity severity, const std::string& text);
   /// A STATUSTEXT from `source` (who sent it): repeats within the window are collapsed.
   void add_statustext(Severity severity, const std::string& source, const std::string& text);
+  /// The outcome of a key (a refusal, an ACK, a pause): a line, also kept as the last outcome.
+  void add_outcome(Severity severity, const std::string& text);
+  /// The last key's outcome, for the header; nullopt before any.
+  std::optional<LogLine> outcome() const;
   /// Several lines (shell output): one entry per line, blank lines dropped.
   void add_lines(Severity severity, const std::string& text);
   std::vector<LogLine> lines() const;
@@ -48,6 +53,7 @@ class MessageLog {
   std::function<double()> wall_s_;
   double start_s_;
   std::function<double()> clock_s_;
+  std::optional<LogLine> outcome_;
 };
 
 }  // namespace hitl::tui

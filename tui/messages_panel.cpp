@@ -8,16 +8,6 @@
 namespace hitl::tui {
 namespace {
 
-Style severity_style(Severity s) {
-  switch (s) {
-    case Severity::Info: return {};
-    case Severity::Notice: return {Color::Accent, false, false};
-    case Severity::Warning: return health_style(Health::Degraded);
-    case Severity::Error: return health_style(Health::Bad);
-  }
-  return {};
-}
-
 struct Row {
   std::string text;
   Style style;

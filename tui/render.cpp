@@ -37,12 +37,23 @@ void draw_header(Screen& screen, const Rect& r, const DashboardModel& m) {
   cell(" ");
   cell(m.state, health_style(m.state_health));
   cell("  " + m.clock);
-  // Right-aligned in what is left: an action in flight, else the two keys everyone needs.
-  std::string hint = m.busy.empty() ? kViewHints : m.busy;
+  // Right-aligned in what is left: an action in flight, else (before any key) the two keys
+  // everyone needs; the footer lists them too.
+  std::string hint = !m.busy.empty() ? m.busy : m.outcome ? "" : kViewHints;
   const int room = r.x + r.w - x - 3;
   if (room < 4) return;
   if (static_cast<int>(hint.size()) > room) hint = "..." + hint.substr(hint.size() - static_cast<std::size_t>(room - 3));
-  put(screen, r, r.x + r.w - static_cast<int>(hint.size()) - 1, r.y, hint, m.busy.empty() ? Style{Color::Dim, false, false} : Style{Color::Accent, true, false});
+  if (!hint.empty())
+    put(screen, r, r.x + r.w - static_cast<int>(hint.size()) - 1, r.y, hint, m.busy.empty() ? Style{Color::Dim, false, false} : Style{Color::Accent, true, false});
+  // Pinned between them: the last key's outcome, stamped like the messages, cut to the room left.
+  if (!m.outcome) return;
+  const int outcome_room = r.x + r.w - x - 3 - (hint.empty() ? 0 : static_cast<int>(hint.size()) + 2);
+  if (outcome_room < 12) return;
+  std::string text = format("%.1f ", m.outcome->t_s) + m.outcome->text;
+  if (static_cast<int>(text.size()) > outcome_room) text = text.substr(0, static_cast<std::size_t>(outcome_room - 3)) + "...";
+  x += 2;
+  put(screen, r, x, r.y, "| ", {Color::Dim, false, false});
+  put(screen, r, x + 2, r.y, text, severity_style(m.outcome->severity));
 }
 
 void draw_footer(Screen& screen, const Rect& r, const DashboardModel& m, const Interaction& in) {

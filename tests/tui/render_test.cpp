@@ -12,6 +12,7 @@
 #include "tui/panels.h"
 #include "tui/layout.h"
 #include "tui/memory_screen.h"
+#include "tui/message_log.h"
 #include "tui/ncurses_screen.h"
 #include "tui/render.h"
 
@@ -249,6 +250,26 @@ TEST(Render, MessagesScrollBackAndStayWhileLinesArrive) {
   d.on_key(Key::character('?'), more, nullptr);
   d.on_key(Key::character('x'), more, nullptr);
   EXPECT_EQ(d.interaction().messages_top, 0);
+}
+
+// Issue 18: the last key's outcome stays in the header while the messages move on.
+TEST(Render, TheLastKeysOutcomeIsPinnedInTheHeader) {
+  MessageLog log;
+  log.add_outcome(Severity::Error, "arm denied: Preflight Fail: ekf2 not aligned");
+  for (int i = 0; i < 30; ++i) log.add(Severity::Info, "later line " + std::to_string(i));
+  auto m = test::sample_model();
+  m.messages = log.lines();
+  m.outcome = log.outcome();
+  ASSERT_TRUE(m.outcome);
+  const auto s = draw(120, 40, m);
+  SCOPED_TRACE(s.dump());
+  const auto at = s.find("arm denied: Preflight Fail");
+  EXPECT_EQ(at.second, 0);
+  EXPECT_EQ(s.style_at(at.first, 0).color, Color::Bad);
+  // At 80 columns it is cut to the room there is, never over the clock.
+  const auto narrow = draw(80, 24, m);
+  EXPECT_NE(narrow.row(0).find("sim 12.3 s  rtf 1.00  | "), std::string::npos) << narrow.row(0);
+  EXPECT_NE(narrow.row(0).find("arm denied"), std::string::npos) << narrow.row(0);
 }
 
 TEST(Render, MonochromeTerminalsStillTellTheGradesApart) {
