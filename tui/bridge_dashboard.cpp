@@ -123,7 +123,7 @@ DashboardModel BridgeDashboard::collect() {
   }
   DashboardModel m;
   m.title = "hitl bridge";
-  m.actions = true;
+  m.keys = "adtls";  // no simulator: no pause, reset or trajectory
   board_.fill(m, 1.0);  // the board runs on its own clock: real time
   if (m.ekf && !m.ekf->unavailable) m.ekf->error_note = "no ground truth: hitl bridge runs no simulator";
   m.messages = log_.lines();

@@ -117,7 +117,7 @@ struct DashboardModel {
   std::string link_partner;        ///< the Link panel's title: who is on the other end
   Health link_health = Health::Good;
   std::vector<LinkField> link;
-  bool actions = false;            ///< keys act on a vehicle (the footer lists them)
+  std::string keys;                ///< the action keys that work here ("adtlprfs"; the footer and help list them); empty: it only shows
   bool trajectory_running = false; ///< f then asks whether to stop it
   std::string busy;                ///< an action in flight, for the footer ("arming ...")
   std::optional<LogLine> outcome;  ///< the last key's outcome, pinned in the header

@@ -7,25 +7,62 @@
 namespace hitl::tui {
 namespace {
 
-constexpr const char* kKeyHints = "a:arm d:disarm t:takeoff l:land p:pause r:reset f:fly s:shell ?:help q:quit";
 constexpr const char* kViewHints = "?:help q:quit";
+constexpr const char* kScrollHint = "PgUp/PgDn:messages";
 
-/// The help overlay's lines: the keys, then what the colours mean.
-const char* const kHelp[] = {
-    "a  arm                    d  disarm (asks first in the air)",
-    "t  take off               l  land",
-    "p  pause / resume         r  reset to home (asks when armed)",
-    "f  fly the -t trajectory  s  one shell command",
-    "?  this help              q  quit",
+/// The keys that act, in the footer's order: the footer's word, the help's words.
+struct KeyHelp {
+  char key;
+  const char* hint;
+  const char* help;
+};
+constexpr KeyHelp kActionKeys[] = {
+    {'a', "arm", "arm"},       {'d', "disarm", "disarm (asks first in the air)"},
+    {'t', "takeoff", "take off"}, {'l', "land", "land"},
+    {'p', "pause", "pause / resume"}, {'r', "reset", "reset to home (asks when armed)"},
+    {'f', "fly", "fly the -t trajectory"}, {'s', "shell", "one shell command"}};
+
+/// The footer: the keys that work on this dashboard, the scroll keys while they fit, help, quit.
+std::string key_hints(const std::string& keys, int width) {
+  std::string acting;
+  for (const auto& k : kActionKeys)
+    if (keys.find(k.key) != std::string::npos) acting += std::string(1, k.key) + ":" + k.hint + " ";
+  const std::string with_scroll = acting + kScrollHint + " " + kViewHints;
+  return static_cast<int>(with_scroll.size()) <= width ? with_scroll : acting + kViewHints;
+}
+
+const char* const kHelpTail[] = {
     "PgUp PgDn  scroll the messages (Home oldest, End newest)",
     "",
     "Rates: green within 5 % of expected, yellow 5-20 %,",
     "red worse or stale. Test ratios: red from 1 (rejected).",
-    "Without colours the words ok / warn / bad / STOP say it.",
+    "Without colours the words ok / warn / bad / STOP say it."};
+const char* const kHelpActing[] = {
     "",
     "Keys act through the session's client port, as hitl arm,",
-    "hitl fly and hitl shell do from another terminal.",
-    "Any key closes this help."};
+    "hitl fly and hitl shell do from another terminal."};
+
+/// The help overlay's lines: the keys that work here, two a line, then what the colours mean.
+std::vector<std::string> help_lines(const std::string& keys) {
+  std::vector<std::string> lines;
+  std::string pending;
+  for (const auto& k : kActionKeys) {
+    if (keys.find(k.key) == std::string::npos) continue;
+    const std::string item = std::string(1, k.key) + "  " + k.help;
+    if (pending.empty()) {
+      pending = item;
+    } else {
+      lines.push_back(fit(pending, 25) + item);
+      pending.clear();
+    }
+  }
+  if (!pending.empty()) lines.push_back(pending);
+  lines.push_back(fit("?  this help", 25) + "q  quit");
+  for (const char* line : kHelpTail) lines.emplace_back(line);
+  if (!keys.empty()) for (const char* line : kHelpActing) lines.emplace_back(line);
+  lines.emplace_back("Any key closes this help.");
+  return lines;
+}
 
 void draw_header(Screen& screen, const Rect& r, const DashboardModel& m) {
   int x = r.x;
@@ -70,19 +107,20 @@ void draw_footer(Screen& screen, const Rect& r, const DashboardModel& m, const I
     }
     case Interaction::Mode::Normal:
     case Interaction::Mode::Help:
-      put(screen, r, r.x, r.y, fit(m.actions ? kKeyHints : kViewHints, r.w), {Color::Dim, false, false});
+      put(screen, r, r.x, r.y, fit(key_hints(m.keys, r.w), r.w), {Color::Dim, false, false});
       return;
   }
 }
 
-void draw_help(Screen& screen) {
-  const int w = 64, h = static_cast<int>(std::size(kHelp)) + 2;
+void draw_help(Screen& screen, const std::string& keys) {
+  const auto lines = help_lines(keys);
+  const int w = 64, h = static_cast<int>(lines.size()) + 2;
   const Rect box{(screen.width() - w) / 2, (screen.height() - h) / 2, w, h};
   const Rect in = box.inner();
   for (int y = box.y; y < box.y + box.h; ++y) put(screen, box, box.x, y, std::string(static_cast<std::size_t>(w), ' '));
   screen.box(box, "Keys and colours", {Color::Accent, true, false});
   int y = in.y;
-  for (const char* line : kHelp) put(screen, in, in.x + 1, y++, line);
+  for (const auto& line : lines) put(screen, in, in.x + 1, y++, line);
 }
 
 }  // namespace
@@ -105,7 +143,7 @@ void render(Screen& screen, const DashboardModel& model, const Interaction& inte
   if (!l.link.empty()) draw_link(screen, l.link, model.link_partner, model.link_health, model.link);
   if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages, interaction.messages_top);
   draw_footer(screen, l.footer, model, interaction);
-  if (interaction.mode == Interaction::Mode::Help) draw_help(screen);
+  if (interaction.mode == Interaction::Mode::Help) draw_help(screen, model.keys);
   screen.flush();
 }
 

@@ -105,7 +105,7 @@ DashboardModel SimDashboard::collect() {
   const hil::SessionSnapshot s = session_.snapshot();
   DashboardModel m;
   m.title = dashboard_.title;
-  m.actions = true;
+  m.keys = config_.clients_port == 0 ? "pr" : "adtlprfs";  // --clients 0: nothing reaches the board
   const double pace = s.speed > 0 ? s.speed : (s.recent_real_time_factor > 0 ? s.recent_real_time_factor : 1.0);
   if (s.paused) {
     m.state = "PAUSED";

@@ -272,6 +272,31 @@ TEST(Render, TheLastKeysOutcomeIsPinnedInTheHeader) {
   EXPECT_NE(narrow.row(0).find("arm denied"), std::string::npos) << narrow.row(0);
 }
 
+// Issue 18: the footer and the help list only the keys that work on that dashboard.
+TEST(Render, TheFooterListsOnlyTheKeysThatWorkHere) {
+  auto sim = test::sample_model();
+  const auto s = draw(120, 40, sim);
+  EXPECT_EQ(s.row(39).rfind("a:arm d:disarm t:takeoff l:land p:pause r:reset f:fly s:shell PgUp/PgDn:messages ?:help q:quit", 0), 0u)
+      << s.row(39);
+  EXPECT_NE(draw(80, 24, sim).row(23).find("s:shell ?:help q:quit"), std::string::npos);  // the scroll keys are in the help
+
+  auto bridge = sim;
+  bridge.keys = "adtls";
+  const auto b = draw(120, 40, bridge);
+  EXPECT_EQ(b.row(39).rfind("a:arm d:disarm t:takeoff l:land s:shell PgUp/PgDn:messages ?:help q:quit", 0), 0u) << b.row(39);
+  const auto bh = draw(120, 40, bridge, Interaction{Interaction::Mode::Help, "", "", ""});
+  EXPECT_GE(bh.find("s  one shell command").second, 0) << bh.dump();
+  EXPECT_EQ(bh.find("pause / resume").second, -1);
+
+  auto inspect = sim;
+  inspect.keys.clear();
+  const auto i = draw(80, 24, inspect);
+  EXPECT_EQ(i.row(23).rfind("PgUp/PgDn:messages ?:help q:quit", 0), 0u) << i.row(23);
+  const auto ih = draw(80, 24, inspect, Interaction{Interaction::Mode::Help, "", "", ""});
+  EXPECT_EQ(ih.find("arm").second, -1) << ih.dump();
+  EXPECT_GE(ih.find("PgUp PgDn").second, 0);
+}
+
 TEST(Render, MonochromeTerminalsStillTellTheGradesApart) {
   const Style good{Color::Good, false, false}, warn{Color::Warning, false, false}, bad{Color::Bad, false, false};
   // Without colours: plain, bold, bold standout.
