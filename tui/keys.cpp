@@ -68,7 +68,16 @@ Dispatcher::Result Dispatcher::request(Action action, const DashboardModel& mode
       if (in_air) return confirm(Action::ForceDisarm, "Disarm IN THE AIR? The motors stop and the vehicle falls (forced disarm).");
       break;
     case Action::ResetHome:
-      if (armed) return confirm(Action::ResetHome, "Reset to home while ARMED? The vehicle is put back on the ground at home.");
+      // What the board will believe: its estimate keeps going while the truth is moved home.
+      if (armed && in_air)
+        return confirm(Action::ResetHome,
+                       "Reset IN THE AIR? The vehicle is put on the ground at home, motors stopped, but the board's estimate "
+                       "keeps flying: PX4 sees a jump and may fail its estimator checks. Land and disarm first, or restart "
+                       "the board afterwards.");
+      if (armed)
+        return confirm(Action::ResetHome,
+                       "Reset to home while ARMED? The vehicle is put back on the ground at home, motors stopped, while PX4 "
+                       "stays armed and sees its position jump there. Disarm first, or restart the board afterwards.");
       break;
     case Action::FlyTrajectory:
       if (model.trajectory_running) return confirm(Action::StopTrajectory, "A trajectory is being flown. Stop it?");

@@ -1,5 +1,7 @@
 #include "tui/render.h"
 
+#include <algorithm>
+
 #include "tui/draw.h"
 #include "tui/layout.h"
 #include "tui/panels.h"
@@ -95,9 +97,13 @@ void draw_header(Screen& screen, const Rect& r, const DashboardModel& m) {
 
 void draw_footer(Screen& screen, const Rect& r, const DashboardModel& m, const Interaction& in) {
   switch (in.mode) {
-    case Interaction::Mode::Confirm:
-      put(screen, r, r.x, r.y, fit(in.question + "  [y/N]", r.w), {Color::Warning, true, true});
+    case Interaction::Mode::Confirm: {
+      // A question longer than the line is shown whole above it (draw_question).
+      const std::string line = in.question + "  [y/N]";
+      put(screen, r, r.x, r.y, fit(static_cast<int>(line.size()) <= r.w ? line : "y: yes, any other key: no  [y/N]", r.w),
+          {Color::Warning, true, true});
       return;
+    }
     case Interaction::Mode::Prompt: {
       const std::string line = in.label + in.input;
       // Keep the end of a long line in view (the cursor is there).
@@ -110,6 +116,18 @@ void draw_footer(Screen& screen, const Rect& r, const DashboardModel& m, const I
       put(screen, r, r.x, r.y, fit(key_hints(m.keys, r.w), r.w), {Color::Dim, false, false});
       return;
   }
+}
+
+/// A question too long for the footer, wrapped in a box just above it.
+void draw_question(Screen& screen, const std::string& question) {
+  const int w = std::min(screen.width(), 72);
+  const auto lines = wrap(question, w - 4);
+  const int h = static_cast<int>(lines.size()) + 2;
+  const Rect box{(screen.width() - w) / 2, screen.height() - 1 - h, w, h};
+  for (int y = box.y; y < box.y + box.h; ++y) put(screen, box, box.x, y, std::string(static_cast<std::size_t>(w), ' '));
+  screen.box(box, "Confirm", {Color::Warning, true, false});
+  int y = box.y + 1;
+  for (const auto& line : lines) put(screen, box.inner(), box.x + 2, y++, line, {Color::Warning, true, false});
 }
 
 void draw_help(Screen& screen, const std::string& keys) {
@@ -144,6 +162,8 @@ void render(Screen& screen, const DashboardModel& model, const Interaction& inte
   if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages, interaction.messages_top);
   draw_footer(screen, l.footer, model, interaction);
   if (interaction.mode == Interaction::Mode::Help) draw_help(screen, model.keys);
+  if (interaction.mode == Interaction::Mode::Confirm && static_cast<int>(interaction.question.size()) + 7 > l.footer.w)
+    draw_question(screen, interaction.question);
   screen.flush();
 }
 
