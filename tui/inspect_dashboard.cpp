@@ -1,5 +1,6 @@
 #include "tui/inspect_dashboard.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "engine/mavlink/messages.h"
@@ -81,6 +82,9 @@ DashboardModel InspectDashboard::collect() {
     row.health = Health::Bad;
     m.paths.rows.push_back(std::move(row));
   }
+  // What fails its --expect first, so a busy link's forty messages do not push it off the panel.
+  std::stable_partition(m.paths.rows.begin(), m.paths.rows.end(),
+                        [](const PathRow& r) { return r.expected_hz > 0 && r.health != Health::Good; });
   auto count = [](uint64_t n) { return std::to_string(n); };
   const auto& p = s->parser;
   m.link = {{"frames", count(s->frames)},
