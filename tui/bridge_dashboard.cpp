@@ -71,7 +71,8 @@ PathsPanel bridge_paths(const bridge::BridgeHealth& now, const std::optional<bri
 }
 
 BridgeDashboard::BridgeDashboard(const bridge::BridgeConfig& config)
-    : board_(config.clients_port, std::nullopt, dsp_hitl_rates(model::x500_vehicle_config().sensors), log_) {
+    : board_reachable_(config.clients_port != 0),
+      board_(config.clients_port, std::nullopt, dsp_hitl_rates(model::x500_vehicle_config().sensors), log_) {
   log_.add(Severity::Info, "hitl bridge --tui: ? for the keys");
 }
 
@@ -123,7 +124,7 @@ DashboardModel BridgeDashboard::collect() {
   }
   DashboardModel m;
   m.title = "hitl bridge";
-  m.keys = "adtls";  // no simulator: no pause, reset or trajectory
+  m.keys = board_reachable_ ? "adtls" : "";  // no simulator: no pause, reset or trajectory
   board_.fill(m, 1.0);  // the board runs on its own clock: real time
   if (m.ekf && !m.ekf->unavailable) m.ekf->error_note = "no ground truth: hitl bridge runs no simulator";
   m.messages = log_.lines();

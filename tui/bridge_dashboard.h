@@ -39,6 +39,7 @@ class BridgeDashboard : public DashboardSource, public DashboardActions, public 
 
  private:
   MessageLog log_;
+  bool board_reachable_;  ///< a client port to reach the board through (not --clients 0)
   BoardClients board_;
   mutable std::mutex mutex_;
   std::optional<bridge::BridgeHealth> health_, previous_;
