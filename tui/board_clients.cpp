@@ -47,15 +47,17 @@ BoardClients::BoardClients(uint16_t clients_port, std::optional<uint8_t> truth_s
   const auto link = vehicle::session_client_options(clients_port_);
   feed_ = std::make_unique<vehicle::TelemetryFeed>(
       link, vehicle::dashboard_streams(),
-      [this](mavlink::MavSeverity s, const std::string& text) { log_.add(severity_from_mavlink(static_cast<uint8_t>(s)), text); },
+      [this](mavlink::MavSeverity s, const std::string& text) { log_.add_statustext(severity_from_mavlink(static_cast<uint8_t>(s)), "autopilot", text); },
       truth_sysid);
   shell_ = std::make_unique<vehicle::ShellPoller>(link, rates, 1.0, [this](const std::string& command, bool ok, const std::string& output) {
     log_.add(Severity::Notice, "shell> " + command);
     if (ok) log_.add_lines(Severity::Info, output);
     else log_.add(Severity::Error, output);
+    log_.add_outcome(ok ? Severity::Notice : Severity::Error,
+                     "shell> " + command + (ok ? ": done, its output in Messages" : ": " + output));
   });
   commands_ = std::make_unique<vehicle::CommandWorker>(
-      link, [this](vehicle::OperatorCommand, bool ok, const std::string& text) { log_.add(ok ? Severity::Notice : Severity::Error, text); });
+      link, [this](vehicle::OperatorCommand, bool ok, const std::string& text) { log_.add_outcome(ok ? Severity::Notice : Severity::Error, text); });
 }
 
 BoardClients::~BoardClients() { stop(); }
@@ -89,13 +91,13 @@ std::optional<std::string> BoardClients::refusal(Action action) const {
 
 void BoardClients::perform(Action action, const std::string& argument) {
   if (auto why = refusal(action)) {  // it changed since the key asked
-    log_.add(Severity::Warning, std::string(to_string(action)) + ": " + *why);
+    log_.add_outcome(Severity::Warning, std::string(to_string(action)) + ": " + *why);
     return;
   }
   if (action == Action::Shell) {
     shell_->run_command(argument);
   } else if (is_command(action)) {
-    log_.add(Severity::Info, std::string(to_string(action)) + " ...");
+    log_.add_outcome(Severity::Info, std::string(to_string(action)) + " ...");
     commands_->submit(command_for(action));
   }
 }

@@ -71,7 +71,8 @@ PathsPanel bridge_paths(const bridge::BridgeHealth& now, const std::optional<bri
 }
 
 BridgeDashboard::BridgeDashboard(const bridge::BridgeConfig& config)
-    : board_(config.clients_port, std::nullopt, dsp_hitl_rates(model::x500_vehicle_config().sensors), log_) {
+    : board_reachable_(config.clients_port != 0),
+      board_(config.clients_port, std::nullopt, dsp_hitl_rates(model::x500_vehicle_config().sensors), log_) {
   log_.add(Severity::Info, "hitl bridge --tui: ? for the keys");
 }
 
@@ -108,7 +109,7 @@ std::optional<std::string> BridgeDashboard::refusal(Action action) const {
 
 void BridgeDashboard::perform(Action action, const std::string& argument) {
   if (auto why = refusal(action)) {
-    log_.add(Severity::Warning, std::string(to_string(action)) + ": " + *why);
+    log_.add_outcome(Severity::Warning, std::string(to_string(action)) + ": " + *why);
     return;
   }
   board_.perform(action, argument);
@@ -123,10 +124,11 @@ DashboardModel BridgeDashboard::collect() {
   }
   DashboardModel m;
   m.title = "hitl bridge";
-  m.actions = true;
+  m.keys = board_reachable_ ? "adtls" : "";  // no simulator: no pause, reset or trajectory
   board_.fill(m, 1.0);  // the board runs on its own clock: real time
   if (m.ekf && !m.ekf->unavailable) m.ekf->error_note = "no ground truth: hitl bridge runs no simulator";
   m.messages = log_.lines();
+  m.outcome = log_.outcome();
   if (!h) {
     m.state = "starting";
     m.state_health = Health::Degraded;

@@ -24,7 +24,7 @@ class BridgeDashboard : public DashboardSource, public DashboardActions, public 
   // DashboardSource
   DashboardModel collect() override;
   std::optional<std::string> finished() override;
-  void note(Severity severity, const std::string& text) override { log_.add(severity, text); }
+  void note(Severity severity, const std::string& text) override { log_.add_outcome(severity, text); }
   // DashboardActions
   std::optional<std::string> refusal(Action action) const override;
   void perform(Action action, const std::string& argument) override;
@@ -39,6 +39,7 @@ class BridgeDashboard : public DashboardSource, public DashboardActions, public 
 
  private:
   MessageLog log_;
+  bool board_reachable_;  ///< a client port to reach the board through (not --clients 0)
   BoardClients board_;
   mutable std::mutex mutex_;
   std::optional<bridge::BridgeHealth> health_, previous_;

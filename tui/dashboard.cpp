@@ -6,6 +6,8 @@
 
 #include "engine/common/clock.h"
 #include "tui/keys.h"
+#include "tui/layout.h"
+#include "tui/panels.h"
 #include "tui/render.h"
 #include "tui/terminal.h"
 
@@ -48,6 +50,8 @@ Expected<DashboardEnd> run_dashboard(DashboardSource& source, DashboardActions* 
         if ((*terminal)->stop_signal()) break;
         continue;
       }
+      const Rect messages = layout_for(screen.width(), screen.height(), model).messages.inner();
+      dispatcher.set_messages_view(message_row_count(model.messages, messages.w), messages.h);
       const auto result = dispatcher.on_key(key, model, actions);
       if (result.note) source.note(Severity::Notice, *result.note);
       quit = result.quit;

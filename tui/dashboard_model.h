@@ -95,6 +95,7 @@ struct LogLine {
   double t_s = 0;                  ///< on the dashboard's clock (simulated seconds for sim and demo; else since it started)
   Severity severity = Severity::Info;
   std::string text;
+  int repeats = 1;                 ///< a STATUSTEXT said this many times within a short window: "(xN)"
 };
 
 struct LinkField {
@@ -116,9 +117,10 @@ struct DashboardModel {
   std::string link_partner;        ///< the Link panel's title: who is on the other end
   Health link_health = Health::Good;
   std::vector<LinkField> link;
-  bool actions = false;            ///< keys act on a vehicle (the footer lists them)
+  std::string keys;                ///< the action keys that work here ("adtlprfs"; the footer and help list them); empty: it only shows
   bool trajectory_running = false; ///< f then asks whether to stop it
   std::string busy;                ///< an action in flight, for the footer ("arming ...")
+  std::optional<LogLine> outcome;  ///< the last key's outcome, pinned in the header
 };
 
 }  // namespace hitl::tui

@@ -92,6 +92,16 @@ std::string rate(double hz) {
   return hz >= 1000 ? format("%.0f", hz) : format("%.1f", hz);
 }
 
+Style severity_style(Severity s) {
+  switch (s) {
+    case Severity::Info: return {};
+    case Severity::Notice: return {Color::Accent, false, false};
+    case Severity::Warning: return health_style(Health::Degraded);
+    case Severity::Error: return health_style(Health::Bad);
+  }
+  return {};
+}
+
 Style health_style(telemetry::Health health) {
   switch (health) {
     case telemetry::Health::Good: return {Color::Good, false, false};

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/telemetry/health.h"
+#include "tui/dashboard_model.h"
 #include "tui/screen.h"
 
 namespace hitl::tui {
@@ -34,5 +35,7 @@ std::string rate(double hz);
 
 /// The style of a health grade: Good green, Degraded yellow, Bad red (bold).
 Style health_style(telemetry::Health health);
+/// A message's colour by its severity (info plain, notice accent, warning yellow, error red).
+Style severity_style(Severity severity);
 
 }  // namespace hitl::tui

@@ -1,5 +1,6 @@
 #include "tui/inspect_dashboard.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "engine/mavlink/messages.h"
@@ -14,7 +15,8 @@ void InspectDashboard::on_frame(const mavlink::Frame& frame, const std::string& 
   if (!frame.is<mavlink::msg::Statustext>() || frame.desc == nullptr) return;
   const auto t = frame.as<mavlink::msg::Statustext>();
   const std::string text(t.text.data(), strnlen(t.text.data(), t.text.size()));
-  log_.add(severity_from_mavlink(t.severity), "[" + source + " " + std::to_string(frame.sysid) + "] " + text);
+  const std::string from = source + " " + std::to_string(frame.sysid);
+  log_.add_statustext(severity_from_mavlink(t.severity), from, "[" + from + "] " + text);
 }
 
 void InspectDashboard::on_tick(const telemetry::TrafficSummary& summary) {
@@ -48,6 +50,7 @@ DashboardModel InspectDashboard::collect() {
   m.clock = format("%.1f s", s ? s->duration_s : 0.0);
   m.link_partner = where_;
   m.messages = log_.lines();
+  m.outcome = log_.outcome();
   m.paths.caption = expected_hz_.empty() ? "rates over the last second; --expect NAME=HZ sets what they should be"
                                          : "held to --expect; jitter and max gap since the start";
   if (!s) return m;
@@ -79,6 +82,9 @@ DashboardModel InspectDashboard::collect() {
     row.health = Health::Bad;
     m.paths.rows.push_back(std::move(row));
   }
+  // What fails its --expect first, so a busy link's forty messages do not push it off the panel.
+  std::stable_partition(m.paths.rows.begin(), m.paths.rows.end(),
+                        [](const PathRow& r) { return r.expected_hz > 0 && r.health != Health::Good; });
   auto count = [](uint64_t n) { return std::to_string(n); };
   const auto& p = s->parser;
   m.link = {{"frames", count(s->frames)},

@@ -24,7 +24,7 @@ class InspectDashboard : public DashboardSource, public inspect::Inspector::Obse
   // DashboardSource
   DashboardModel collect() override;
   std::optional<std::string> finished() override;
-  void note(Severity severity, const std::string& text) override { log_.add(severity, text); }
+  void note(Severity severity, const std::string& text) override { log_.add_outcome(severity, text); }
   // inspect::Inspector::Observer (the inspector's thread)
   void on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_unix_ns) override;
   void on_tick(const telemetry::TrafficSummary& summary) override;

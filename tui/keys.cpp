@@ -1,5 +1,7 @@
 #include "tui/keys.h"
 
+#include <algorithm>
+
 namespace hitl::tui {
 
 const char* to_string(Action action) {
@@ -18,6 +20,33 @@ const char* to_string(Action action) {
   return "?";
 }
 
+void Dispatcher::enter(Interaction::Mode mode, std::string question, std::string label) {
+  const auto top = interaction_.messages_top;
+  interaction_ = {mode, std::move(question), std::move(label), "", top};
+}
+
+void Dispatcher::set_messages_view(int total_rows, int page_rows) {
+  message_rows_ = std::max(0, total_rows);
+  message_page_ = std::max(1, page_rows);
+}
+
+bool Dispatcher::scroll(const Key& key) {
+  const int last_top = std::max(0, message_rows_ - message_page_);
+  const int step = std::max(1, message_page_ - 1);  // a page, one row kept for context
+  auto& top = interaction_.messages_top;
+  switch (key.kind) {
+    case Key::Kind::PageUp: top = std::max(0, std::min(top.value_or(last_top), last_top) - step); break;
+    case Key::Kind::PageDown:
+      if (top) top = *top + step;
+      break;
+    case Key::Kind::Home: top = 0; break;
+    case Key::Kind::End: top.reset(); break;
+    default: return false;
+  }
+  if (top && *top >= last_top) top.reset();  // at the newest again: follow it
+  return true;
+}
+
 Dispatcher::Result Dispatcher::start(Action action, const std::string& argument, DashboardActions* actions) {
   if (actions == nullptr) return {false, std::string(to_string(action)) + ": this dashboard only shows (no vehicle to act on)"};
   if (auto why = actions->refusal(action)) return {false, std::string(to_string(action)) + ": " + *why};
@@ -28,7 +57,7 @@ Dispatcher::Result Dispatcher::start(Action action, const std::string& argument,
 Dispatcher::Result Dispatcher::request(Action action, const DashboardModel& model, DashboardActions* actions) {
   auto confirm = [&](Action confirmed, std::string question) {
     if (actions == nullptr || actions->refusal(confirmed)) return start(confirmed, "", actions);  // says why not
-    interaction_ = {Interaction::Mode::Confirm, std::move(question), "", ""};
+    enter(Interaction::Mode::Confirm, std::move(question));
     pending_ = confirmed;
     return Result{};
   };
@@ -39,7 +68,16 @@ Dispatcher::Result Dispatcher::request(Action action, const DashboardModel& mode
       if (in_air) return confirm(Action::ForceDisarm, "Disarm IN THE AIR? The motors stop and the vehicle falls (forced disarm).");
       break;
     case Action::ResetHome:
-      if (armed) return confirm(Action::ResetHome, "Reset to home while ARMED? The vehicle is put back on the ground at home.");
+      // What the board will believe: its estimate keeps going while the truth is moved home.
+      if (armed && in_air)
+        return confirm(Action::ResetHome,
+                       "Reset IN THE AIR? The vehicle is put on the ground at home, motors stopped, but the board's estimate "
+                       "keeps flying: PX4 sees a jump and may fail its estimator checks. Land and disarm first, or restart "
+                       "the board afterwards.");
+      if (armed)
+        return confirm(Action::ResetHome,
+                       "Reset to home while ARMED? The vehicle is put back on the ground at home, motors stopped, while PX4 "
+                       "stays armed and sees its position jump there. Disarm first, or restart the board afterwards.");
       break;
     case Action::FlyTrajectory:
       if (model.trajectory_running) return confirm(Action::StopTrajectory, "A trajectory is being flown. Stop it?");
@@ -51,13 +89,15 @@ Dispatcher::Result Dispatcher::request(Action action, const DashboardModel& mode
 
 Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& model, DashboardActions* actions) {
   if (key.kind == Key::Kind::None || key.kind == Key::Kind::Resize) return {};
+  // The messages scroll while typing a shell command too (to read its output).
+  if (interaction_.mode != Interaction::Mode::Confirm && interaction_.mode != Interaction::Mode::Help && scroll(key)) return {};
   switch (interaction_.mode) {
     case Interaction::Mode::Help:
-      interaction_ = {};
+      enter(Interaction::Mode::Normal);
       return {};
     case Interaction::Mode::Confirm: {
       const auto action = pending_;
-      interaction_ = {};
+      enter(Interaction::Mode::Normal);
       pending_.reset();
       if (key.kind == Key::Kind::Char && (key.ch == 'y' || key.ch == 'Y') && action) return start(*action, "", actions);
       return {false, std::string(action ? to_string(*action) : "action") + ": cancelled"};
@@ -65,11 +105,11 @@ Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& mode
     case Interaction::Mode::Prompt:
       switch (key.kind) {
         case Key::Kind::Escape:
-          interaction_ = {};
+          enter(Interaction::Mode::Normal);
           return {};
         case Key::Kind::Enter: {
           std::string line = interaction_.input;
-          interaction_ = {};
+          enter(Interaction::Mode::Normal);
           const auto first = line.find_first_not_of(' ');
           if (first == std::string::npos) return {};
           return start(Action::Shell, line.substr(first), actions);
@@ -89,7 +129,7 @@ Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& mode
     case 'q': return {true, std::nullopt};
     case '?':
     case 'h':
-      interaction_ = {Interaction::Mode::Help, "", "", ""};
+      enter(Interaction::Mode::Help);
       return {};
     case 'a': return request(Action::Arm, model, actions);
     case 'd': return request(Action::Disarm, model, actions);
@@ -100,7 +140,7 @@ Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& mode
     case 'f': return request(Action::FlyTrajectory, model, actions);
     case 's':
       if (actions == nullptr || actions->refusal(Action::Shell)) return start(Action::Shell, "", actions);
-      interaction_ = {Interaction::Mode::Prompt, "", "shell (Enter runs, Esc cancels)> ", ""};
+      enter(Interaction::Mode::Prompt, "", "shell (Enter runs, Esc cancels)> ");
       return {};
     default: return {};
   }

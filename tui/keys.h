@@ -14,7 +14,7 @@
 namespace hitl::tui {
 
 struct Key {
-  enum class Kind { None, Char, Enter, Escape, Backspace, Resize };
+  enum class Kind { None, Char, Enter, Escape, Backspace, Resize, PageUp, PageDown, Home, End };
   Kind kind = Kind::None;
   char ch = 0;  ///< Char: a printable ASCII character
   static Key character(char c) { return {Kind::Char, c}; }
@@ -31,15 +31,22 @@ class Dispatcher {
   /// (a dashboard that only shows): then every action key says so.
   Result on_key(const Key& key, const DashboardModel& model, DashboardActions* actions);
   const Interaction& interaction() const { return interaction_; }
+  /// The messages panel as drawn now: rows in all, rows shown (the loop sets it before each key).
+  void set_messages_view(int total_rows, int page_rows);
 
   static constexpr std::size_t kMaxCommandLength = 200;
 
  private:
   Result request(Action action, const DashboardModel& model, DashboardActions* actions);
   Result start(Action action, const std::string& argument, DashboardActions* actions);
+  /// PgUp, PgDn, Home, End on the messages panel; false for other keys.
+  bool scroll(const Key& key);
+  /// Enters `mode`; the messages panel stays where it was scrolled.
+  void enter(Interaction::Mode mode, std::string question = {}, std::string label = {});
 
   Interaction interaction_;
   std::optional<Action> pending_;  ///< what y confirms
+  int message_rows_ = 0, message_page_ = 0;
 };
 
 }  // namespace hitl::tui

@@ -60,12 +60,17 @@ Layout layout_for(int width, int height, const DashboardModel& m) {
     ry += l.ekf.h;
   }
 
-  if (tall) {  // link under the left column, messages across the bottom
+  if (tall) {  // link under the left column; messages where they get the most rows
     const int link_h = link_height(m, left_w);
-    l.link = {0, left_used, left_w, link_h};
     const int messages_y = std::max(left_used + link_h, ry);
-    l.messages = {0, messages_y, width, std::max(0, bottom - messages_y)};
-    if (ry < messages_y && m.ekf) l.ekf.h += messages_y - ry;  // no gap on the right
+    if (bottom - ry > bottom - messages_y) {  // the right column is shorter: messages fill it
+      l.link = {0, left_used, left_w, std::max(0, bottom - left_used)};
+      l.messages = {left_w, ry, right_w, std::max(0, bottom - ry)};
+    } else {  // across the bottom
+      l.link = {0, left_used, left_w, link_h};
+      l.messages = {0, messages_y, width, std::max(0, bottom - messages_y)};
+      if (ry < messages_y && m.ekf) l.ekf.h += messages_y - ry;  // no gap on the right
+    }
   } else {
     l.link = {0, left_used, left_w, std::max(0, bottom - left_used)};
     l.messages = {left_w, ry, right_w, std::max(0, bottom - ry)};

@@ -1,6 +1,7 @@
 // Where each panel goes for a terminal size. 80x24 is the minimum: two columns (data paths,
 // dsp_hitl and link on the left; vehicle, EKF and messages on the right). From 40 rows the
-// messages take the full width at the bottom; wider panels show more columns and longer bars
+// messages go where they get the most rows: down the right column under the EKF, or across the
+// whole width under the link when the left column is the shorter one; wider panels show more columns and longer bars
 // (each panel decides from its own width). A source without vehicle panels (inspect) gets the
 // data paths across the top, then link, then messages.
 #pragma once
@@ -12,7 +13,7 @@ namespace hitl::tui {
 
 inline constexpr int kMinWidth = 80;
 inline constexpr int kMinHeight = 24;
-/// From this many rows, messages span the whole width at the bottom.
+/// From this many rows, the link panel keeps its own height and messages may span the whole width.
 inline constexpr int kTallHeight = 40;
 /// A panel at least this wide inside shows its extra columns.
 inline constexpr int kWidePanel = 56;

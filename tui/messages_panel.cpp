@@ -1,37 +1,58 @@
-// Messages: the autopilot's STATUSTEXT and the dashboard's own events, newest at the bottom.
+// Messages: the autopilot's STATUSTEXT and the dashboard's own events, newest at the bottom; the
+// view follows the newest until scrolled back (PgUp), then stays on the same rows as lines arrive.
 #include "tui/draw.h"
 #include "tui/panels.h"
+
+#include <algorithm>
 
 namespace hitl::tui {
 namespace {
 
-Style severity_style(Severity s) {
-  switch (s) {
-    case Severity::Info: return {};
-    case Severity::Notice: return {Color::Accent, false, false};
-    case Severity::Warning: return health_style(Health::Degraded);
-    case Severity::Error: return health_style(Health::Bad);
+struct Row {
+  std::string text;
+  Style style;
+};
+
+/// Every line wrapped to `width`, oldest first, stamps on the first row of each.
+std::vector<Row> rows_of(const std::vector<LogLine>& lines, int width) {
+  std::vector<Row> rows;
+  for (const auto& line : lines) {
+    const std::string stamp = format("%6.1f ", line.t_s);
+    const std::string text = line.repeats > 1 ? line.text + format(" (x%d)", line.repeats) : line.text;
+    auto wrapped = wrap(text, width - static_cast<int>(stamp.size()));
+    if (wrapped.empty()) wrapped.emplace_back();
+    for (std::size_t k = 0; k < wrapped.size(); ++k)
+      rows.push_back({(k == 0 ? stamp : std::string(stamp.size(), ' ')) + wrapped[k], severity_style(line.severity)});
   }
-  return {};
+  return rows;
 }
 
 }  // namespace
 
-void draw_messages(Screen& screen, const Rect& r, const std::vector<LogLine>& lines) {
-  screen.box(r, "Messages");
+int message_row_count(const std::vector<LogLine>& lines, int width) {
+  return width <= 0 ? 0 : static_cast<int>(rows_of(lines, width).size());
+}
+
+void draw_messages(Screen& screen, const Rect& r, const std::vector<LogLine>& lines, std::optional<int> top_row) {
   const Rect in = r.inner();
-  if (in.empty()) return;
-  // Wrap the newest lines until the panel is full, then draw them oldest first.
-  std::vector<std::pair<std::string, Style>> shown;
-  for (auto it = lines.rbegin(); it != lines.rend() && static_cast<int>(shown.size()) < in.h; ++it) {
-    const std::string stamp = format("%6.1f ", it->t_s);
-    auto wrapped = wrap(it->text, in.w - static_cast<int>(stamp.size()));
-    if (wrapped.empty()) wrapped.emplace_back();
-    for (std::size_t k = wrapped.size(); k-- > 0 && static_cast<int>(shown.size()) < in.h;)
-      shown.emplace_back((k == 0 ? stamp : std::string(stamp.size(), ' ')) + wrapped[k], severity_style(it->severity));
+  if (in.empty()) {
+    screen.box(r, "Messages");
+    return;
   }
-  int y = in.y + in.h - static_cast<int>(shown.size());
-  for (auto it = shown.rbegin(); it != shown.rend(); ++it) put(screen, in, in.x, y++, it->first, it->second);
+  const auto rows = rows_of(lines, in.w);
+  const int total = static_cast<int>(rows.size());
+  const int last_top = std::max(0, total - in.h);
+  const int top = top_row ? std::clamp(*top_row, 0, last_top) : last_top;
+  // Scrolled back: the title says where, and how to return.
+  if (top_row && top < last_top)
+    screen.box(r, format("Messages %d-%d/%d, End: newest", top + 1, std::min(total, top + in.h), total),
+               {Color::Warning, false, false});
+  else
+    screen.box(r, "Messages");
+  for (int k = 0; k < in.h && top + k < total; ++k) {
+    const Row& row = rows[static_cast<std::size_t>(top + k)];
+    put(screen, in, in.x, in.y + k, row.text, row.style);
+  }
 }
 
 }  // namespace hitl::tui

@@ -104,6 +104,10 @@ Key NcursesScreen::read_key(int timeout_ms) {
   switch (ch) {
     case ERR: return {};
     case KEY_RESIZE: return {Key::Kind::Resize, 0};
+    case KEY_PPAGE: return {Key::Kind::PageUp, 0};
+    case KEY_NPAGE: return {Key::Kind::PageDown, 0};
+    case KEY_HOME: return {Key::Kind::Home, 0};
+    case KEY_END: return {Key::Kind::End, 0};
     case 27: return {Key::Kind::Escape, 0};
     case '\n':
     case '\r':

@@ -47,8 +47,19 @@ void draw_paths(Screen& screen, const Rect& r, const PathsPanel& panel) {
   put(screen, in, in.x, in.y, header, {Color::Dim, false, false});
   int y = in.y + 1;
   if (panel.rows.empty()) put(screen, in, in.x, y, "nothing yet", {Color::Dim, false, false});
-  for (const auto& row : panel.rows) {
-    if (y >= in.y + in.h) break;
+  // Rows that do not fit are counted on the last line, never dropped silently.
+  const int room = in.h - 1;
+  const int total = static_cast<int>(panel.rows.size());
+  const int shown = total > room ? std::max(0, room - 1) : total;
+  if (shown < total) {
+    int failing = 0;
+    for (int k = shown; k < total; ++k) failing += panel.rows[static_cast<std::size_t>(k)].health != Health::Good ? 1 : 0;
+    put(screen, in, in.x, in.y + in.h - 1,
+        format("+%d more", total - shown) + (failing ? format(" (%d not ok)", failing) : std::string(" (all ok)")),
+        failing ? health_style(Health::Bad) : Style{Color::Dim, false, false});
+  }
+  for (int k = 0; k < shown; ++k) {
+    const PathRow& row = panel.rows[static_cast<std::size_t>(k)];
     const Style hs = health_style(row.health);
     int x = in.x;
     auto cell = [&](const std::string& text, Style style = {}) {
@@ -69,7 +80,7 @@ void draw_paths(Screen& screen, const Rect& r, const PathsPanel& panel) {
          row.note.empty() ? hs : Style{Color::Dim, false, false});
     ++y;
   }
-  if (!panel.caption.empty() && y < in.y + in.h) put(screen, in, in.x, in.y + in.h - 1, panel.caption, {Color::Dim, false, false});
+  if (!panel.caption.empty() && shown == total && y < in.y + in.h) put(screen, in, in.x, in.y + in.h - 1, panel.caption, {Color::Dim, false, false});
 }
 
 }  // namespace hitl::tui

@@ -1,5 +1,7 @@
 #include "tui/render.h"
 
+#include <algorithm>
+
 #include "tui/draw.h"
 #include "tui/layout.h"
 #include "tui/panels.h"
@@ -7,24 +9,62 @@
 namespace hitl::tui {
 namespace {
 
-constexpr const char* kKeyHints = "a:arm d:disarm t:takeoff l:land p:pause r:reset f:fly s:shell ?:help q:quit";
 constexpr const char* kViewHints = "?:help q:quit";
+constexpr const char* kScrollHint = "PgUp/PgDn:messages";
 
-/// The help overlay's lines: the keys, then what the colours mean.
-const char* const kHelp[] = {
-    "a  arm                    d  disarm (asks first in the air)",
-    "t  take off               l  land",
-    "p  pause / resume         r  reset to home (asks when armed)",
-    "f  fly the -t trajectory  s  one shell command",
-    "?  this help              q  quit",
+/// The keys that act, in the footer's order: the footer's word, the help's words.
+struct KeyHelp {
+  char key;
+  const char* hint;
+  const char* help;
+};
+constexpr KeyHelp kActionKeys[] = {
+    {'a', "arm", "arm"},       {'d', "disarm", "disarm (asks first in the air)"},
+    {'t', "takeoff", "take off"}, {'l', "land", "land"},
+    {'p', "pause", "pause / resume"}, {'r', "reset", "reset to home (asks when armed)"},
+    {'f', "fly", "fly the -t trajectory"}, {'s', "shell", "one shell command"}};
+
+/// The footer: the keys that work on this dashboard, the scroll keys while they fit, help, quit.
+std::string key_hints(const std::string& keys, int width) {
+  std::string acting;
+  for (const auto& k : kActionKeys)
+    if (keys.find(k.key) != std::string::npos) acting += std::string(1, k.key) + ":" + k.hint + " ";
+  const std::string with_scroll = acting + kScrollHint + " " + kViewHints;
+  return static_cast<int>(with_scroll.size()) <= width ? with_scroll : acting + kViewHints;
+}
+
+const char* const kHelpTail[] = {
+    "PgUp PgDn  scroll the messages (Home oldest, End newest)",
     "",
     "Rates: green within 5 % of expected, yellow 5-20 %,",
     "red worse or stale. Test ratios: red from 1 (rejected).",
-    "Without colours the words ok / warn / bad / STOP say it.",
+    "Without colours the words ok / warn / bad / STOP say it."};
+const char* const kHelpActing[] = {
     "",
     "Keys act through the session's client port, as hitl arm,",
-    "hitl fly and hitl shell do from another terminal.",
-    "Any key closes this help."};
+    "hitl fly and hitl shell do from another terminal."};
+
+/// The help overlay's lines: the keys that work here, two a line, then what the colours mean.
+std::vector<std::string> help_lines(const std::string& keys) {
+  std::vector<std::string> lines;
+  std::string pending;
+  for (const auto& k : kActionKeys) {
+    if (keys.find(k.key) == std::string::npos) continue;
+    const std::string item = std::string(1, k.key) + "  " + k.help;
+    if (pending.empty()) {
+      pending = item;
+    } else {
+      lines.push_back(fit(pending, 25) + item);
+      pending.clear();
+    }
+  }
+  if (!pending.empty()) lines.push_back(pending);
+  lines.push_back(fit("?  this help", 25) + "q  quit");
+  for (const char* line : kHelpTail) lines.emplace_back(line);
+  if (!keys.empty()) for (const char* line : kHelpActing) lines.emplace_back(line);
+  lines.emplace_back("Any key closes this help.");
+  return lines;
+}
 
 void draw_header(Screen& screen, const Rect& r, const DashboardModel& m) {
   int x = r.x;
@@ -36,19 +76,34 @@ void draw_header(Screen& screen, const Rect& r, const DashboardModel& m) {
   cell(" ");
   cell(m.state, health_style(m.state_health));
   cell("  " + m.clock);
-  // Right-aligned in what is left: an action in flight, else the two keys everyone needs.
-  std::string hint = m.busy.empty() ? kViewHints : m.busy;
+  // Right-aligned in what is left: an action in flight, else (before any key) the two keys
+  // everyone needs; the footer lists them too.
+  std::string hint = !m.busy.empty() ? m.busy : m.outcome ? "" : kViewHints;
   const int room = r.x + r.w - x - 3;
   if (room < 4) return;
   if (static_cast<int>(hint.size()) > room) hint = "..." + hint.substr(hint.size() - static_cast<std::size_t>(room - 3));
-  put(screen, r, r.x + r.w - static_cast<int>(hint.size()) - 1, r.y, hint, m.busy.empty() ? Style{Color::Dim, false, false} : Style{Color::Accent, true, false});
+  if (!hint.empty())
+    put(screen, r, r.x + r.w - static_cast<int>(hint.size()) - 1, r.y, hint, m.busy.empty() ? Style{Color::Dim, false, false} : Style{Color::Accent, true, false});
+  // Pinned between them: the last key's outcome, stamped like the messages, cut to the room left.
+  if (!m.outcome) return;
+  const int outcome_room = r.x + r.w - x - 3 - (hint.empty() ? 0 : static_cast<int>(hint.size()) + 2);
+  if (outcome_room < 12) return;
+  std::string text = format("%.1f ", m.outcome->t_s) + m.outcome->text;
+  if (static_cast<int>(text.size()) > outcome_room) text = text.substr(0, static_cast<std::size_t>(outcome_room - 3)) + "...";
+  x += 2;
+  put(screen, r, x, r.y, "| ", {Color::Dim, false, false});
+  put(screen, r, x + 2, r.y, text, severity_style(m.outcome->severity));
 }
 
 void draw_footer(Screen& screen, const Rect& r, const DashboardModel& m, const Interaction& in) {
   switch (in.mode) {
-    case Interaction::Mode::Confirm:
-      put(screen, r, r.x, r.y, fit(in.question + "  [y/N]", r.w), {Color::Warning, true, true});
+    case Interaction::Mode::Confirm: {
+      // A question longer than the line is shown whole above it (draw_question).
+      const std::string line = in.question + "  [y/N]";
+      put(screen, r, r.x, r.y, fit(static_cast<int>(line.size()) <= r.w ? line : "y: yes, any other key: no  [y/N]", r.w),
+          {Color::Warning, true, true});
       return;
+    }
     case Interaction::Mode::Prompt: {
       const std::string line = in.label + in.input;
       // Keep the end of a long line in view (the cursor is there).
@@ -58,19 +113,32 @@ void draw_footer(Screen& screen, const Rect& r, const DashboardModel& m, const I
     }
     case Interaction::Mode::Normal:
     case Interaction::Mode::Help:
-      put(screen, r, r.x, r.y, fit(m.actions ? kKeyHints : kViewHints, r.w), {Color::Dim, false, false});
+      put(screen, r, r.x, r.y, fit(key_hints(m.keys, r.w), r.w), {Color::Dim, false, false});
       return;
   }
 }
 
-void draw_help(Screen& screen) {
-  const int w = 64, h = static_cast<int>(std::size(kHelp)) + 2;
+/// A question too long for the footer, wrapped in a box just above it.
+void draw_question(Screen& screen, const std::string& question) {
+  const int w = std::min(screen.width(), 72);
+  const auto lines = wrap(question, w - 4);
+  const int h = static_cast<int>(lines.size()) + 2;
+  const Rect box{(screen.width() - w) / 2, screen.height() - 1 - h, w, h};
+  for (int y = box.y; y < box.y + box.h; ++y) put(screen, box, box.x, y, std::string(static_cast<std::size_t>(w), ' '));
+  screen.box(box, "Confirm", {Color::Warning, true, false});
+  int y = box.y + 1;
+  for (const auto& line : lines) put(screen, box.inner(), box.x + 2, y++, line, {Color::Warning, true, false});
+}
+
+void draw_help(Screen& screen, const std::string& keys) {
+  const auto lines = help_lines(keys);
+  const int w = 64, h = static_cast<int>(lines.size()) + 2;
   const Rect box{(screen.width() - w) / 2, (screen.height() - h) / 2, w, h};
   const Rect in = box.inner();
   for (int y = box.y; y < box.y + box.h; ++y) put(screen, box, box.x, y, std::string(static_cast<std::size_t>(w), ' '));
   screen.box(box, "Keys and colours", {Color::Accent, true, false});
   int y = in.y;
-  for (const char* line : kHelp) put(screen, in, in.x + 1, y++, line);
+  for (const auto& line : lines) put(screen, in, in.x + 1, y++, line);
 }
 
 }  // namespace
@@ -91,9 +159,11 @@ void render(Screen& screen, const DashboardModel& model, const Interaction& inte
   if (!l.vehicle.empty() && model.vehicle) draw_vehicle(screen, l.vehicle, *model.vehicle);
   if (!l.ekf.empty() && model.ekf) draw_ekf(screen, l.ekf, *model.ekf);
   if (!l.link.empty()) draw_link(screen, l.link, model.link_partner, model.link_health, model.link);
-  if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages);
+  if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages, interaction.messages_top);
   draw_footer(screen, l.footer, model, interaction);
-  if (interaction.mode == Interaction::Mode::Help) draw_help(screen);
+  if (interaction.mode == Interaction::Mode::Help) draw_help(screen, model.keys);
+  if (interaction.mode == Interaction::Mode::Confirm && static_cast<int>(interaction.question.size()) + 7 > l.footer.w)
+    draw_question(screen, interaction.question);
   screen.flush();
 }
 

@@ -2,6 +2,7 @@
 // question or prompt being answered), and the help overlay. Composed on the screen, flushed once.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "tui/dashboard_model.h"
@@ -16,6 +17,7 @@ struct Interaction {
   std::string question;  ///< Confirm: what y will do
   std::string label;     ///< Prompt: "shell> "
   std::string input;     ///< Prompt: typed so far
+  std::optional<int> messages_top;  ///< the messages panel scrolled back: its first row; nullopt follows the newest
 };
 
 void render(Screen& screen, const DashboardModel& model, const Interaction& interaction);

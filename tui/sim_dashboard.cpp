@@ -28,7 +28,11 @@ void SimDashboard::shutdown() {
 void SimDashboard::on_event(const hil::SessionEvent& event) {
   const Severity s = event.severity == hil::Severity::Error ? Severity::Error
                      : event.severity == hil::Severity::Warning ? Severity::Warning : Severity::Info;
-  log_.add(s, event.text);
+  // Pause, resume and reset come from the keys: their outcome is pinned in the header.
+  const bool key_outcome = event.text.rfind("paused at", 0) == 0 || event.text.rfind("resumed at", 0) == 0 ||
+                           event.text.rfind("reset to home", 0) == 0;
+  if (key_outcome) log_.add_outcome(s, event.text);
+  else log_.add(s, event.text);
 }
 
 void SimDashboard::mark_finished(const std::string& why) {
@@ -67,7 +71,7 @@ void SimDashboard::perform(Action action, const std::string& argument) {
     case Action::TogglePause: session_.set_paused(!session_.snapshot().paused); return;
     case Action::ResetHome: session_.request_reset(); return;
     case Action::StopTrajectory:
-      log_.add(Severity::Notice, "stopping the trajectory (SIGINT to hitl fly)");
+      log_.add_outcome(Severity::Notice, "stopping the trajectory (SIGINT to hitl fly)");
       trajectory_.stop();
       return;
     case Action::FlyTrajectory: {
@@ -76,16 +80,16 @@ void SimDashboard::perform(Action action, const std::string& argument) {
       const std::vector<std::string> argv = {dashboard_.hitl_binary, "fly",     "--session-port", port, "-i", "127.0.0.1", "--port",
                                              port,                  "trajectory", dashboard_.trajectory_file, "--mode",
                                              dashboard_.trajectory_mode};
-      log_.add(Severity::Notice, "f: hitl fly trajectory " + dashboard_.trajectory_file + " through 127.0.0.1:" + port);
+      log_.add_outcome(Severity::Notice, "f: hitl fly trajectory " + dashboard_.trajectory_file + " through 127.0.0.1:" + port);
       trajectory_flying_.store(true);
       auto started = trajectory_.start(
           argv, [this](const std::string& line) { log_.add(Severity::Info, line); },
           [this](int code, const std::string& out) {
             log_.add_lines(code == 0 ? Severity::Notice : Severity::Error, out);
-            log_.add(code == 0 ? Severity::Notice : Severity::Error,
+            log_.add_outcome(code == 0 ? Severity::Notice : Severity::Error,
                      "hitl fly trajectory ended: " + std::string(code == 0 ? "done" : "exit " + std::to_string(code)));
           });
-      if (!started) log_.add(Severity::Error, "f: " + started.error().message);
+      if (!started) log_.add_outcome(Severity::Error, "f: " + started.error().message);
       return;
     }
     case Action::Arm:
@@ -101,7 +105,7 @@ DashboardModel SimDashboard::collect() {
   const hil::SessionSnapshot s = session_.snapshot();
   DashboardModel m;
   m.title = dashboard_.title;
-  m.actions = true;
+  m.keys = config_.clients_port == 0 ? "pr" : "adtlprfs";  // --clients 0: nothing reaches the board
   const double pace = s.speed > 0 ? s.speed : (s.recent_real_time_factor > 0 ? s.recent_real_time_factor : 1.0);
   if (s.paused) {
     m.state = "PAUSED";
@@ -132,6 +136,7 @@ DashboardModel SimDashboard::collect() {
   m.trajectory_running = trajectory_.running();
   if (m.trajectory_running) m.busy = "flying " + dashboard_.trajectory_file;
   m.messages = log_.lines();
+  m.outcome = log_.outcome();
 
   auto sum = [](const std::map<std::string, hil::StreamCount>& streams) {
     uint64_t n = 0;

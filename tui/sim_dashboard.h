@@ -35,7 +35,7 @@ class SimDashboard : public DashboardSource, public DashboardActions, public hil
   // DashboardSource
   DashboardModel collect() override;
   std::optional<std::string> finished() override;
-  void note(Severity severity, const std::string& text) override { log_.add(severity, text); }
+  void note(Severity severity, const std::string& text) override { log_.add_outcome(severity, text); }
   // DashboardActions
   std::optional<std::string> refusal(Action action) const override;
   void perform(Action action, const std::string& argument) override;

@@ -55,14 +55,21 @@ void ShellPoller::run_command(const std::string& line) {
 void ShellPoller::poll_dsp_hitl(ShellClient& shell) {
   auto out = shell.run(kDspHitlStatusCommand, kShellTimeout_s);
   std::lock_guard<std::mutex> lock(mutex_);
+  // Each failure is retried at the next poll; the panel says so.
   if (!out) {
-    meter_.on_unavailable("the board's shell did not answer: " + out.error().message);
+    meter_.on_unavailable("the board's shell did not answer (retrying each poll): " + out.error().message);
+    return;
+  }
+  // The prompt alone: the command ran but nothing came back (a qshell whose DSP side did not
+  // answer, a busy board), which says nothing about dsp_hitl being there.
+  if (out->find_first_not_of("\r\n ") == std::string::npos) {
+    meter_.on_unavailable(std::string("shell did not answer `") + kDspHitlStatusCommand + "` (an empty reply); retrying each poll");
     return;
   }
   target::DspHitlStatusReport report;
   std::string error;
   if (target::parse_dsp_hitl_status(*out, &report, &error)) meter_.on_report(report, monotonic_s());
-  else meter_.on_unavailable("no dsp_hitl on this board (" + first_line(*out) + ")");
+  else meter_.on_unavailable("no dsp_hitl on this board (" + first_line(*out) + "); asking again each poll");
 }
 
 void ShellPoller::run() {

@@ -6,6 +6,7 @@
 
 #include "tests/tui/sample_model.h"
 #include "tui/keys.h"
+#include "tui/memory_screen.h"
 
 namespace hitl::tui {
 namespace {
@@ -84,6 +85,33 @@ TEST(Keys, ResetWhileArmedAndStoppingATrajectoryAsk) {
   d.on_key(Key::character('Y'), m, &a);
   ASSERT_EQ(a.done.size(), 2u);
   EXPECT_EQ(a.done[1].first, Action::StopTrajectory);
+}
+
+// Issue 18: a reset while armed says what the board will believe, and what to do instead; the
+// question is shown whole even at 80 columns.
+TEST(Keys, ResetWhileArmedSaysWhatTheBoardWillBelieve) {
+  Dispatcher d;
+  FakeActions a;
+  auto m = test::sample_model();  // armed, in the air
+  d.on_key(Key::character('r'), m, &a);
+  const std::string q = d.interaction().question;
+  EXPECT_NE(q.find("IN THE AIR"), std::string::npos) << q;
+  EXPECT_NE(q.find("estimate keeps flying"), std::string::npos) << q;
+  EXPECT_NE(q.find("PX4 sees a jump"), std::string::npos) << q;
+  EXPECT_NE(q.find("Land and disarm first, or restart the board"), std::string::npos) << q;
+  MemoryScreen s(80, 24);
+  render(s, m, d.interaction());
+  SCOPED_TRACE(s.dump());
+  EXPECT_GE(s.find("Confirm").second, 0);
+  EXPECT_GE(s.find("board afterwards.").second, 0);  // the question's end, wrapped
+  EXPECT_NE(s.row(23).find("[y/N]"), std::string::npos);
+  d.on_key(Key::character('n'), m, &a);
+  EXPECT_TRUE(a.done.empty());
+
+  m.vehicle->in_air = false;  // armed on the ground
+  d.on_key(Key::character('r'), m, &a);
+  EXPECT_NE(d.interaction().question.find("while ARMED"), std::string::npos);
+  EXPECT_NE(d.interaction().question.find("Disarm first"), std::string::npos);
 }
 
 TEST(Keys, ShellPrompt) {

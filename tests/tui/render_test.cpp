@@ -8,8 +8,11 @@
 #include "tests/tui/sample_model.h"
 #include "tui/collect.h"
 #include "tui/draw.h"
+#include "tui/keys.h"
+#include "tui/panels.h"
 #include "tui/layout.h"
 #include "tui/memory_screen.h"
+#include "tui/message_log.h"
 #include "tui/ncurses_screen.h"
 #include "tui/render.h"
 
@@ -177,11 +180,13 @@ TEST(Render, WideAndTallAt200x60) {
   const auto s = draw(200, 60, m);
   SCOPED_TRACE(s.dump());
   const auto l = layout_for(200, 60, m);
-  // Messages take the full width at the bottom, down to the footer.
-  EXPECT_EQ(l.messages.x, 0);
-  EXPECT_EQ(l.messages.w, 200);
+  // Messages use the height there is (issue 18: the EKF was stretched over 20 blank rows while
+  // messages had 6): down the right column under the EKF, to the footer.
+  EXPECT_EQ(l.messages.x, 100);
+  EXPECT_EQ(l.messages.y, l.ekf.y + l.ekf.h);
   EXPECT_EQ(l.messages.y + l.messages.h, 59);
-  EXPECT_EQ(s.find("Messages").first, 2);
+  EXPECT_EQ(l.link.y + l.link.h, 59);
+  EXPECT_EQ(s.find("Messages").first, 102);
   EXPECT_EQ(s.find("Messages").second, l.messages.y);
   // All nine messages fit now, oldest first.
   EXPECT_LT(s.find("line 0").second, s.find("Preflight Fail").second);
@@ -206,6 +211,90 @@ TEST(Render, LongPathNamesAreShownWholeWhenThereIsRoom) {
   const auto s = draw(200, 60, m);
   SCOPED_TRACE(s.dump());
   EXPECT_GE(s.find("tx udp:127.0.0.1:14550").second, 0);
+}
+
+// Issue 18: the messages panel scrolls (PgUp/PgDn, Home, End) and says where it is; lines that
+// arrive while scrolled back do not move the view.
+TEST(Render, MessagesScrollBackAndStayWhileLinesArrive) {
+  auto m = test::sample_model();
+  m.messages.clear();
+  for (int i = 0; i < 40; ++i) m.messages.push_back({1.0 * i, Severity::Info, "entry " + std::to_string(i)});
+  const Rect inner = layout_for(80, 24, m).messages.inner();
+  Dispatcher d;
+  d.set_messages_view(message_row_count(m.messages, inner.w), inner.h);
+  auto shown = [&](const DashboardModel& model) { return draw(80, 24, model, d.interaction()); };
+  EXPECT_GE(shown(m).find("entry 39").second, 0);  // following the newest
+  d.on_key({Key::Kind::PageUp, 0}, m, nullptr);
+  auto s = shown(m);
+  SCOPED_TRACE(s.dump());
+  EXPECT_EQ(s.find("entry 39").second, -1);
+  const int page = inner.h - 1;
+  EXPECT_GE(s.find("entry " + std::to_string(40 - inner.h - page)).second, 0);
+  EXPECT_GE(s.find(", End: newest").second, 0);
+  // New lines do not move what is being read.
+  auto more = m;
+  more.messages.push_back({41.0, Severity::Info, "entry 40"});
+  d.set_messages_view(message_row_count(more.messages, inner.w), inner.h);
+  EXPECT_EQ(shown(more).row(inner.y), s.row(inner.y));
+  d.on_key({Key::Kind::Home, 0}, more, nullptr);
+  EXPECT_GE(shown(more).find("entry 0 ").second, 0);
+  // End follows the newest again; so does PgDn at the bottom.
+  d.on_key({Key::Kind::End, 0}, more, nullptr);
+  EXPECT_FALSE(d.interaction().messages_top);
+  EXPECT_GE(shown(more).find("entry 40").second, 0);
+  d.on_key({Key::Kind::PageUp, 0}, more, nullptr);
+  for (int i = 0; i < 20; ++i) d.on_key({Key::Kind::PageDown, 0}, more, nullptr);
+  EXPECT_FALSE(d.interaction().messages_top);
+  // The scroll survives a question and the help overlay.
+  d.on_key({Key::Kind::Home, 0}, more, nullptr);
+  d.on_key(Key::character('?'), more, nullptr);
+  d.on_key(Key::character('x'), more, nullptr);
+  EXPECT_EQ(d.interaction().messages_top, 0);
+}
+
+// Issue 18: the last key's outcome stays in the header while the messages move on.
+TEST(Render, TheLastKeysOutcomeIsPinnedInTheHeader) {
+  MessageLog log;
+  log.add_outcome(Severity::Error, "arm denied: Preflight Fail: ekf2 not aligned");
+  for (int i = 0; i < 30; ++i) log.add(Severity::Info, "later line " + std::to_string(i));
+  auto m = test::sample_model();
+  m.messages = log.lines();
+  m.outcome = log.outcome();
+  ASSERT_TRUE(m.outcome);
+  const auto s = draw(120, 40, m);
+  SCOPED_TRACE(s.dump());
+  const auto at = s.find("arm denied: Preflight Fail");
+  EXPECT_EQ(at.second, 0);
+  EXPECT_EQ(s.style_at(at.first, 0).color, Color::Bad);
+  // At 80 columns it is cut to the room there is, never over the clock.
+  const auto narrow = draw(80, 24, m);
+  EXPECT_NE(narrow.row(0).find("sim 12.3 s  rtf 1.00  | "), std::string::npos) << narrow.row(0);
+  EXPECT_NE(narrow.row(0).find("arm denied"), std::string::npos) << narrow.row(0);
+}
+
+// Issue 18: the footer and the help list only the keys that work on that dashboard.
+TEST(Render, TheFooterListsOnlyTheKeysThatWorkHere) {
+  auto sim = test::sample_model();
+  const auto s = draw(120, 40, sim);
+  EXPECT_EQ(s.row(39).rfind("a:arm d:disarm t:takeoff l:land p:pause r:reset f:fly s:shell PgUp/PgDn:messages ?:help q:quit", 0), 0u)
+      << s.row(39);
+  EXPECT_NE(draw(80, 24, sim).row(23).find("s:shell ?:help q:quit"), std::string::npos);  // the scroll keys are in the help
+
+  auto bridge = sim;
+  bridge.keys = "adtls";
+  const auto b = draw(120, 40, bridge);
+  EXPECT_EQ(b.row(39).rfind("a:arm d:disarm t:takeoff l:land s:shell PgUp/PgDn:messages ?:help q:quit", 0), 0u) << b.row(39);
+  const auto bh = draw(120, 40, bridge, Interaction{Interaction::Mode::Help, "", "", ""});
+  EXPECT_GE(bh.find("s  one shell command").second, 0) << bh.dump();
+  EXPECT_EQ(bh.find("pause / resume").second, -1);
+
+  auto inspect = sim;
+  inspect.keys.clear();
+  const auto i = draw(80, 24, inspect);
+  EXPECT_EQ(i.row(23).rfind("PgUp/PgDn:messages ?:help q:quit", 0), 0u) << i.row(23);
+  const auto ih = draw(80, 24, inspect, Interaction{Interaction::Mode::Help, "", "", ""});
+  EXPECT_EQ(ih.find("arm").second, -1) << ih.dump();
+  EXPECT_GE(ih.find("PgUp PgDn").second, 0);
 }
 
 TEST(Render, MonochromeTerminalsStillTellTheGradesApart) {
@@ -235,8 +324,16 @@ TEST(Render, ResizeRedrawsForTheNewSize) {
   const auto big = layout_for(120, 40, m);
   EXPECT_FALSE(small.too_small);
   EXPECT_EQ(small.messages.x, 40);  // right column
-  EXPECT_EQ(big.messages.x, 0);     // across the bottom
+  EXPECT_EQ(big.messages.x, 60);    // down the right column: more rows than across the bottom
+  EXPECT_GE(big.messages.h, 20);
   EXPECT_GT(big.messages.h, small.messages.h);
+  // A left column shorter than the right one (no dsp_hitl): messages across the bottom.
+  auto no_dsp = m;
+  no_dsp.dsp_hitl.reset();
+  no_dsp.paths.rows.resize(1);
+  const auto bottom = layout_for(120, 60, no_dsp);
+  EXPECT_EQ(bottom.messages.x, 0);
+  EXPECT_EQ(bottom.messages.w, 120);
   // Panels never overlap and stay on screen.
   for (const auto& l : {small, big}) {
     const Rect panels[] = {l.paths, l.dsp_hitl, l.link, l.vehicle, l.ekf, l.messages};

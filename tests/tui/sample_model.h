@@ -25,7 +25,7 @@ inline DashboardModel sample_model() {
   m.title = "hitl sim";
   m.state = "running";
   m.clock = "sim 12.3 s  rtf 1.00";
-  m.actions = true;
+  m.keys = "adtlprfs";
   m.paths.caption = "expected at --speed 1; loss: frames from the board";
   m.paths.rows = {path("IMU", "HIL_SENSOR", 250, 249.0, Health::Good), path("mag", "HIL_SENSOR", 50, 45.0, Health::Degraded),
                   path("baro", "HIL_SENSOR", 10, 5.0, Health::Bad),   path("GPS", "HIL_GPS", 30, 30.0, Health::Good),

@@ -173,10 +173,28 @@ TEST(TuiE2E, BridgeDashboardShowsTheLinkAndActsThroughItsClientPort) {
       << s;
   // The vehicle panel fills from the board through the bridge's client port.
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("on ground") != std::string::npos; }, 20s, &s)) << s;
+  // The footer lists only the keys that work on a bridge (issue 18).
+  const std::string footer = s.substr(s.rfind("a:arm"));
+  EXPECT_EQ(footer.find("p:pause"), std::string::npos) << footer;
+  EXPECT_EQ(footer.find("f:fly"), std::string::npos) << footer;
+  EXPECT_NE(footer.find("s:shell"), std::string::npos) << footer;
+  // The last key's outcome is pinned in the header (its first line).
+  auto header = [](const std::string& x) { return x.substr(0, x.find('\n')); };
   tmux.keys("a");
-  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("arm denied") != std::string::npos; }, 20s, &s)) << s;
+  ASSERT_TRUE(tmux.until([&](const std::string& x) { return header(x).find("arm denied") != std::string::npos; }, 20s, &s)) << s;
   tmux.keys("p");  // no simulator to pause: refused with the reason
-  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("runs no simulator") != std::string::npos; }, 10s, &s)) << s;
+  ASSERT_TRUE(tmux.until([&](const std::string& x) { return header(x).find("pause/resume: hitl bridge runs no") != std::string::npos; }, 10s, &s)) << s;
+  // The messages scroll: a page back shows where it is, End returns to the newest.
+  for (int i = 0; i < 2; ++i) {  // two commands' output: more than the panel holds
+    tmux.keys("s");
+    tmux.run({"send-keys", "-t", "dash", "help", "Enter"});
+  }
+  ASSERT_TRUE(tmux.until([&](const std::string& x) { return header(x).find("shell> help: done") != std::string::npos; }, 15s, &s)) << s;
+  std::this_thread::sleep_for(1s);  // the second one's output
+  tmux.run({"send-keys", "-t", "dash", "PPage"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find(", End: newest") != std::string::npos; }, 5s, &s)) << s;
+  tmux.run({"send-keys", "-t", "dash", "End"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find(", End: newest") == std::string::npos; }, 5s, &s)) << s;
 
   tmux.keys("q");
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;

@@ -11,6 +11,8 @@
 #include "engine/vehicle/param_client.h"
 #include "engine/net/tcp_server.h"
 #include "engine/vehicle/shell_client.h"
+#include "engine/vehicle/shell_poller.h"
+#include "target/core/dsp_hitl_status.h"
 #include "tests/support/mavlink_peer.h"
 
 namespace hitl::vehicle {
@@ -162,6 +164,50 @@ TEST(ShellClient, CollectsOutputUntilThePromptAndDropsTheEcho) {
   auto out = shell.run("ver all");
   ASSERT_TRUE(out.ok()) << out.error().message;
   EXPECT_EQ(*out, "line one\nline two that is long enough to need a second chunk of output\n");
+}
+
+// Issue 18: a poll the shell answers with nothing (the prompt alone) is a shell that did not
+// answer, not a board without dsp_hitl; the poller keeps asking and shows the counters once the
+// board answers.
+TEST(ShellPoller, AnEmptyReplyIsAShellThatDidNotAnswerAndItKeepsAsking) {
+  std::atomic<int> polls{0};
+  ScriptedBoard board([&](const mavlink::Frame& f, test::MavlinkPeer& peer) {
+    if (!f.is<msg::SerialControl>()) return;
+    const auto in = f.as<msg::SerialControl>();
+    const std::string text(reinterpret_cast<const char*>(in.data.data()), in.count);
+    std::string reply = "\npxh> ";
+    if (text != "\n" && polls.fetch_add(1) >= 2)  // the first two polls: an empty reply
+      reply = text + target::dsp_hitl_status_text(true, {}, {}) + "pxh> ";
+    for (std::size_t pos = 0; pos < reply.size(); pos += 70) {
+      msg::SerialControl out;
+      out.device = 10;
+      out.flags = 1;
+      const auto n = std::min<std::size_t>(70, reply.size() - pos);
+      out.count = static_cast<uint8_t>(n);
+      std::memcpy(out.data.data(), reply.data() + pos, n);
+      peer.send(out);
+    }
+  });
+  LinkOptions o;
+  o.connect = "udp:127.0.0.1:" + std::to_string(board.port());
+  o.local_port = 0;
+  o.timeout_s = 3;
+  ShellPoller poller(o, telemetry::DspHitlExpectedRates{}, 0.1, nullptr);
+  std::string reason;
+  for (int i = 0; i < 100 && reason.empty(); ++i) {
+    const auto v = poller.dsp_hitl();
+    if (v.state == telemetry::DspHitlView::State::Unavailable) reason = v.reason;
+    std::this_thread::sleep_for(20ms);
+  }
+  EXPECT_NE(reason.find("shell did not answer"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("retrying"), std::string::npos) << reason;
+  EXPECT_EQ(reason.find("no dsp_hitl"), std::string::npos) << reason;
+  bool available = false;
+  for (int i = 0; i < 150 && !available; ++i) {
+    available = poller.dsp_hitl().state == telemetry::DspHitlView::State::Available;
+    std::this_thread::sleep_for(20ms);
+  }
+  EXPECT_TRUE(available) << poller.dsp_hitl().reason;
 }
 
 TEST(VehicleLink, TcpServerBoardAnswersCommands) {
