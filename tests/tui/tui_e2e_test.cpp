@@ -12,62 +12,16 @@
 #include <thread>
 
 #include "tests/support/process.h"
+#include "tests/support/tmux.h"
 
 namespace hitl {
 namespace {
 
 using namespace std::chrono_literals;
 
-/// tmux's path, or empty when it is not installed.
-std::string tmux_path() {
-  FILE* p = ::popen("command -v tmux 2>/dev/null", "r");
-  if (p == nullptr) return {};
-  char buf[512] = {};
-  const bool got = std::fgets(buf, sizeof buf, p) != nullptr;
-  ::pclose(p);
-  std::string path = got ? buf : "";
-  while (!path.empty() && (path.back() == '\n' || path.back() == '\r')) path.pop_back();
-  return path;
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-/// A private tmux server (its own socket name), so nothing of the user's tmux is touched.
-class Tmux {
- public:
-  explicit Tmux(std::string path) : path_(std::move(path)), socket_("hitl-tui-e2e-" + std::to_string(::getpid())) {}
-  ~Tmux() { run({"kill-server"}); }
-
-  std::string run(const std::vector<std::string>& args) {
-    std::vector<std::string> argv{path_, "-L", socket_};
-    argv.insert(argv.end(), args.begin(), args.end());
-    test::Process p(argv);
-    p.wait(10s);
-    return p.out();
-  }
-  std::string screen() { return run({"capture-pane", "-p", "-t", "dash"}); }
-  void keys(const std::string& k) { run({"send-keys", "-t", "dash", k}); }
-
-  /// Polls the screen until `done(screen)`, up to `timeout`; the last screen either way.
-  bool until(const std::function<bool(const std::string&)>& done, std::chrono::milliseconds timeout, std::string* last) {
-    const auto end = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < end) {
-      *last = screen();
-      if (done(*last)) return true;
-      std::this_thread::sleep_for(250ms);
-    }
-    *last = screen();
-    return done(*last);
-  }
-
- private:
-  std::string path_;
-  std::string socket_;
-};
+using test::shell_quoted;
+using test::Tmux;
+using test::tmux_path;
 
 std::optional<double> number_after(const std::string& screen, const std::string& pattern) {
   std::smatch m;
@@ -84,11 +38,11 @@ TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
                        std::to_string(gcs), "--vio-port", "0", "--lockstep"});
   ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
 
-  Tmux tmux(tmux_bin);
-  const std::string sim = quoted(test::hitl_binary()) + " sim -i 127.0.0.1 --hil-port " + std::to_string(hil) +
+  Tmux tmux(tmux_bin, "tui-sim");
+  const std::string sim = shell_quoted(test::hitl_binary()) + " sim -i 127.0.0.1 --hil-port " + std::to_string(hil) +
                           " --local-port " + std::to_string(local) + " --no-vio --clients " + std::to_string(clients) +
                           " --lockstep --speed 1 --tui; echo HITL_EXIT=$?; sleep 60";
-  tmux.run({"new-session", "-d", "-s", "dash", "-x", "120", "-y", "40", sim});
+  tmux.start(sim);
 
   std::string s;
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
@@ -110,7 +64,7 @@ TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
   ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(%\s+ready)")); }, 90s, &s)) << s;
   bool armed = false;
   for (int attempt = 0; attempt < 5 && !armed; ++attempt) {
-    tmux.keys("a");
+    tmux.keys({"a"});
     armed = tmux.until([](const std::string& x) { return x.find("ARMED") != std::string::npos; }, 15s, &s);
   }
   ASSERT_TRUE(armed) << s;
@@ -118,7 +72,7 @@ TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
 
   // Take off: the estimate's altitude and the truth's rise.
   const double before_m = number_after(s, R"(alt (-?[0-9.]+) m est)").value_or(0.0);
-  tmux.keys("t");
+  tmux.keys({"t"});
   ASSERT_TRUE(tmux.until(
       [&](const std::string& x) {
         const auto est = number_after(x, R"(alt (-?[0-9.]+) m est)");
@@ -131,7 +85,7 @@ TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
   EXPECT_TRUE(s.find("taking off") != std::string::npos || s.find("in air") != std::string::npos) << s;
 
   // q: the dashboard closes, the terminal is given back and the summary printed.
-  tmux.keys("q");
+  tmux.keys({"q"});
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
   EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
   EXPECT_NE(s.find("real-time factor"), std::string::npos) << s;  // print_summary's first line
@@ -152,11 +106,11 @@ TEST(TuiE2E, BridgeDashboardShowsTheLinkAndActsThroughItsClientPort) {
                        std::to_string(gcs), "--vio-port", "0"});
   ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
 
-  Tmux tmux(tmux_bin);
-  const std::string bridge = quoted(test::hitl_binary()) + " bridge -i 127.0.0.1 --port " + std::to_string(gcs) +
+  Tmux tmux(tmux_bin, "tui-bridge");
+  const std::string bridge = shell_quoted(test::hitl_binary()) + " bridge -i 127.0.0.1 --port " + std::to_string(gcs) +
                              " --local-port " + std::to_string(local) + " --clients " + std::to_string(clients) +
                              " --tui; echo HITL_EXIT=$?; sleep 60";
-  tmux.run({"new-session", "-d", "-s", "dash", "-x", "120", "-y", "40", bridge});
+  tmux.start(bridge);
 
   std::string s;
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("board up") != std::string::npos; }, 20s, &s)) << s;
@@ -180,23 +134,23 @@ TEST(TuiE2E, BridgeDashboardShowsTheLinkAndActsThroughItsClientPort) {
   EXPECT_NE(footer.find("s:shell"), std::string::npos) << footer;
   // The last key's outcome is pinned in the header (its first line).
   auto header = [](const std::string& x) { return x.substr(0, x.find('\n')); };
-  tmux.keys("a");
+  tmux.keys({"a"});
   ASSERT_TRUE(tmux.until([&](const std::string& x) { return header(x).find("arm denied") != std::string::npos; }, 20s, &s)) << s;
-  tmux.keys("p");  // no simulator to pause: refused with the reason
+  tmux.keys({"p"});  // no simulator to pause: refused with the reason
   ASSERT_TRUE(tmux.until([&](const std::string& x) { return header(x).find("pause/resume: hitl bridge runs no") != std::string::npos; }, 10s, &s)) << s;
   // The messages scroll: a page back shows where it is, End returns to the newest.
   for (int i = 0; i < 2; ++i) {  // two commands' output: more than the panel holds
-    tmux.keys("s");
-    tmux.run({"send-keys", "-t", "dash", "help", "Enter"});
+    tmux.keys({"s"});
+    tmux.keys({"help", "Enter"});
   }
   ASSERT_TRUE(tmux.until([&](const std::string& x) { return header(x).find("shell> help: done") != std::string::npos; }, 15s, &s)) << s;
   std::this_thread::sleep_for(1s);  // the second one's output
-  tmux.run({"send-keys", "-t", "dash", "PPage"});
+  tmux.keys({"PPage"});
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find(", End: newest") != std::string::npos; }, 5s, &s)) << s;
-  tmux.run({"send-keys", "-t", "dash", "End"});
+  tmux.keys({"End"});
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find(", End: newest") == std::string::npos; }, 5s, &s)) << s;
 
-  tmux.keys("q");
+  tmux.keys({"q"});
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
   EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
   board.signal(SIGINT);
@@ -208,9 +162,9 @@ TEST(TuiE2E, BridgeDashboardShowsTheLinkAndActsThroughItsClientPort) {
 TEST(TuiE2E, DemoDashboardFliesTheSquareThenReports) {
   const std::string tmux_bin = tmux_path();
   if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
-  Tmux tmux(tmux_bin);
-  const std::string demo = quoted(test::hitl_binary()) + " demo --tui --speed 4; echo HITL_EXIT=$?; sleep 60";
-  tmux.run({"new-session", "-d", "-s", "dash", "-x", "120", "-y", "40", demo});
+  Tmux tmux(tmux_bin, "tui-demo");
+  const std::string demo = shell_quoted(test::hitl_binary()) + " demo --tui --speed 4; echo HITL_EXIT=$?; sleep 60";
+  tmux.start(demo);
   std::string s;
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
   EXPECT_NE(s.find("hitl demo"), std::string::npos) << s;
