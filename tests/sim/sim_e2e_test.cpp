@@ -447,6 +447,21 @@ TEST(SimE2E, RecordWriteErrorIsSaidAtOnceAndExitsOne) {
   EXPECT_EQ(last_json(sim.out())["record_error"], "writing '/dev/full' failed: No space left on device");
 }
 
+TEST(SimE2E, CtrlCEndsASlowMotionSessionAtOnce) {
+  // At --speed 0.001 a 4 ms step is 4 s of wall time; Ctrl-C used to wait for the step's deadline
+  // (at --speed 1e-9: never, the sleep restarting on each signal), with no summary.
+  Board board;
+  board.serve([](const msg::HilSensor&, uint64_t) { return std::nullopt; });
+  Process sim(board.sim_args({"--duration", "60", "--no-vio", "--speed", "1e-6"}));
+  ASSERT_TRUE(sim.wait_for_stderr("Ctrl-C to stop", 10s)) << sim.err();
+  std::this_thread::sleep_for(300ms);
+  const auto t0 = std::chrono::steady_clock::now();
+  sim.signal(SIGINT);
+  EXPECT_EQ(sim.wait(5s), 0) << sim.err();
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 1s);
+  EXPECT_EQ(last_json(sim.out())["end"], "stopped") << sim.out();
+}
+
 TEST(SimE2E, NumberOptionsRefuseNanInfAndAbsurdValuesPlainly) {
   // Issue 19: --actuator-timeout nan disabled the motor-stop failsafe; --lockstep-timeout nan was taken.
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
