@@ -340,7 +340,7 @@ Expected<Config> parse(std::string_view text, std::string_view source_name, Conf
   json root;
   try {
     root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
     return Error{source + ": not valid JSON: " + e.what()};
   }
   if (!root.is_object()) return Error{source + ": must be a JSON object (got " + std::string(root.type_name()) + ")"};

@@ -21,7 +21,7 @@ Expected<Trajectory> Trajectory::parse(std::string_view text, std::string_view s
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e400
     return Error{src + ": not valid JSON (" + e.what() + ")"};
   }
   if (!j.is_object() || !j.contains("waypoints") || !j["waypoints"].is_array())

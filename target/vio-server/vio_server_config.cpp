@@ -51,7 +51,7 @@ Expected<VioServerConfig> parse_with(std::string_view text, std::string_view sou
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e400
     return Error{std::string(source) + ": not valid JSON (" + e.what() + ")"};
   }
   return apply(doc, std::move(base), source);

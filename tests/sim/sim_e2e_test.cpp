@@ -434,6 +434,19 @@ TEST(SimE2E, BadInputExitsTwoWithAClearLine) {
   EXPECT_NE(bad.err.find("time_constant_up_s"), std::string::npos) << bad.err;
   EXPECT_EQ(test::run_hitl({"sim", "--px4-sitl", "ftp:1"}).exit_code, 2);
   EXPECT_EQ(test::run_hitl({"sim", "--speed", "-1"}).exit_code, 2);
+  // A number too large for a double (1e400) in a JSON file aborted the process (SIGABRT, an
+  // uncaught nlohmann out_of_range) instead of a named error.
+  std::ofstream(dir + "/big.json") << R"({"sensors": {"imu": {"accel_range_m_s2": 1e400}}})";
+  std::ofstream(dir + "/bigw.json") << R"({"home": {"lat_deg": 1e400}})";
+  std::ofstream(dir + "/bigt.json") << R"({"waypoints": [{"t": 0, "x": 1e400, "y": 0, "z": 2, "yaw": 0}]})";
+  for (const auto& args : std::vector<std::vector<std::string>>{{"sim", "--vehicle", dir + "/big.json", "--clients", "0"},
+                                                                {"sim", "--world", dir + "/bigw.json", "--clients", "0"},
+                                                                {"sim", "-t", dir + "/bigt.json", "--clients", "0"}}) {
+    auto big = test::run_hitl(args);
+    EXPECT_EQ(big.exit_code, 2) << args[2] << ": " << big.err;
+    EXPECT_NE(big.err.find("1e400"), std::string::npos) << big.err;
+    EXPECT_EQ(big.err.find("terminate called"), std::string::npos) << big.err;
+  }
 }
 
 TEST(SimE2E, RecordWriteErrorIsSaidAtOnceAndExitsOne) {
