@@ -402,8 +402,11 @@ TEST(SimE2E, ImuSamplesBeyondFullScaleAreClippedCountedAndSaid) {
   Process sim(board.sim_args({"--duration", "1", "--speed", "0", "--no-vio", "--vehicle", dir + "/small_imu.json"}));
   EXPECT_EQ(sim.wait(60s), 0) << sim.err();
   board.stop();
-  for (const auto& f : board.frames())
-    if (f.is<msg::HilSensor>()) EXPECT_LE(std::abs(f.as<msg::HilSensor>().zacc), 4.9f);
+  for (const auto& f : board.frames()) {
+    if (f.is<msg::HilSensor>()) {
+      EXPECT_LE(std::abs(f.as<msg::HilSensor>().zacc), 4.9f);
+    }
+  }
   const auto j = last_json(sim.out());
   EXPECT_EQ(j["imu_saturated"]["accel"], 250);
   EXPECT_EQ(j["imu_saturated"]["gyro"], 0);
