@@ -436,6 +436,11 @@ TEST(SimE2E, BadInputExitsTwoWithAClearLine) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("time_constant_up_s"), std::string::npos) << bad.err;
   EXPECT_EQ(test::run_hitl({"sim", "--px4-sitl", "ftp:1"}).exit_code, 2);
+  // The same port for the clients and the HIL link's local port: say so, not "another process".
+  const auto same = std::to_string(test::free_udp_port());
+  auto clash = test::run_hitl({"sim", "--bind", "127.0.0.1", "--local-port", same, "--clients", same, "--duration", "1"});
+  EXPECT_EQ(clash.exit_code, 2);
+  EXPECT_NE(clash.err.find("--clients " + same + " is also the --local-port"), std::string::npos) << clash.err;
   EXPECT_EQ(test::run_hitl({"sim", "--speed", "-1"}).exit_code, 2);
   // A number too large for a double (1e400) in a JSON file aborted the process (SIGABRT, an
   // uncaught nlohmann out_of_range) instead of a named error.
