@@ -519,9 +519,19 @@ TEST(SimE2E, PhysicsStepPacesRealTimeOrIsRefusedSayingWhy) {
   Process sim(board.sim_args({"--duration", "2", "--no-vio", "--world", dir + "/fine.json"}));
   EXPECT_EQ(sim.wait(60s), 0) << sim.err();
   const auto j = last_json(sim.out());
-  EXPECT_NEAR(j["sent"]["HIL_SENSOR"]["count"].get<int>(), 500, 1);  // 250 Hz of simulated time
+  EXPECT_EQ(j["sent"]["HIL_SENSOR"]["count"].get<int>(), 500);  // 250 Hz of simulated time
   EXPECT_NEAR(j["real_time_factor"].get<double>(), 1.0, 0.1);  // paced by the 2 ms step: was 0.50
   EXPECT_GE(j["wall_time_s"].get<double>(), 1.8);
+  // On the 4 ms grid as with the default step (4000, 8000, ...): the first used to go out after the
+  // first 2 ms step, at 2000 us, 2 ms before the second.
+  board.stop();
+  std::vector<uint64_t> stamps;
+  for (const auto& f : board.frames()) {
+    if (f.is<msg::HilSensor>()) stamps.push_back(f.as<msg::HilSensor>().time_usec);
+  }
+  ASSERT_FALSE(stamps.empty());
+  EXPECT_EQ(stamps.front(), 4000u);
+  for (std::size_t i = 0; i < stamps.size(); ++i) EXPECT_EQ(stamps[i] % 4000, 0u) << "HIL_SENSOR " << i << " at " << stamps[i] << " us";
 }
 
 TEST(SimE2E, RoutesClientsToTheBoardAndTelemetryBack) {
