@@ -243,6 +243,13 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     cfg.link = kind == "tcp" ? hil::FlightStackLink::SitlTcp : hil::FlightStackLink::SitlUdp;
     cfg.sitl_port = *port;
   }
+  if (cfg.local_port != 0 && cfg.local_port == cfg.clients_port &&
+      (cfg.bind_address == "0.0.0.0" || cfg.bind_address == cfg.clients_bind)) {
+    // Both would bind the same UDP port: the second bind failed with "another process is bound
+    // there", which sent the user looking for a process that was this one.
+    log_error(cmd, "--clients " + std::to_string(cfg.clients_port) + " is also the --local-port of the HIL link; give them different ports");
+    return kExitUsage;
+  }
   if (cfg.local_port == 0)
     std::cerr << "hitl sim: warning: --local-port 0 picks an ephemeral port; a PX4 instance keeps the first port it "
                  "heard, so a later session on another port gets no answer\n";

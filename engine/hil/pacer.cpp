@@ -29,7 +29,7 @@ void Pacer::start() {
   k_ = 0;
 }
 
-void Pacer::wait_next() {
+void Pacer::wait_next(const std::atomic<bool>* stop) {
   ++stats_.ticks;
   if (!paced_) return;
   ++k_;
@@ -47,7 +47,15 @@ void Pacer::wait_next() {
     }
     return;
   }
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &due, nullptr) == EINTR) {
+  // Sleep in slices of at most kMaxSlice_s so that a stop (Ctrl-C, q) is seen within one slice
+  // even at a slow --speed, where one step can be seconds of wall time.
+  for (;;) {
+    if (stop != nullptr && stop->load()) return;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    if (to_s(now) >= to_s(due)) return;
+    timespec slice = add_s(now, kMaxSlice_s);
+    if (to_s(slice) > to_s(due)) slice = due;
+    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &slice, nullptr);
   }
 }
 

@@ -5,6 +5,7 @@
 // kMaxCatchUp behind) the schedule is re-anchored instead of bursting, and that is counted too.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <ctime>
 
@@ -20,12 +21,14 @@ struct PacerStats {
 class Pacer {
  public:
   static constexpr double kMaxCatchUp_s = 0.1;
+  static constexpr double kMaxSlice_s = 0.05;
 
   /// `speed` is the real-time factor to hold (1 = real time); 0 = no pacing, as fast as possible.
   Pacer(double period_s, double speed);
   void start();
-  /// Sleeps until the next tick is due (returns at once when behind).
-  void wait_next();
+  /// Sleeps until the next tick is due (returns at once when behind, and within kMaxSlice_s once
+  /// `stop` is set).
+  void wait_next(const std::atomic<bool>* stop = nullptr);
   const PacerStats& stats() const { return stats_; }
 
  private:

@@ -870,7 +870,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       s.publish();
       observer.on_status(snapshot());
     }
-    s.pacer->wait_next();
+    s.pacer->wait_next(&stop);
   }
   if (s.recorder) s.recorder->flush();
   s.watch_recorder(observer);

@@ -32,8 +32,13 @@ struct DueSensors {
 class SensorScheduler {
  public:
   SensorScheduler(double imu_rate_hz, double mag_rate_hz, double baro_rate_hz, double gps_rate_hz)
-      : imu_(imu_rate_hz), mag_(mag_rate_hz), baro_(baro_rate_hz), gps_(gps_rate_hz) {}
-  DueSensors due(double t_s) { return {imu_.due(t_s), mag_.due(t_s), baro_.due(t_s), gps_.due(t_s)}; }
+      : imu_(imu_rate_hz), mag_(mag_rate_hz), baro_(baro_rate_hz), gps_(gps_rate_hz), first_s_(1.0 / imu_rate_hz) {}
+  /// Nothing is due before one IMU period has passed, so the first samples go out at the first IMU
+  /// period (4000 us) whatever the physics step: a 2 ms step used to send one at 2000 us first.
+  DueSensors due(double t_s) {
+    if (t_s + 1e-9 < first_s_) return {};
+    return {imu_.due(t_s), mag_.due(t_s), baro_.due(t_s), gps_.due(t_s)};
+  }
   void reset() {
     imu_.reset();
     mag_.reset();
@@ -43,6 +48,7 @@ class SensorScheduler {
 
  private:
   PeriodicSchedule imu_, mag_, baro_, gps_;
+  double first_s_;
 };
 
 }  // namespace hitl::sensors

@@ -670,17 +670,26 @@ ShellResult Board::Impl::shell_command(const std::string& line) {
     std::string name, value;
     ss >> name >> value;
     const auto* current = params.get(name);
-    if (current == nullptr) return "param set: unknown parameter " + name + "\n";
+    if (current == nullptr) return {"Parameter " + name + " not found.\n", 1};  // PX4's param returns 1
     try {
       auto v = current->type == vehicle::ParamType::Int32 ? vehicle::ParamValue::int32(std::stoi(value))
                                                           : vehicle::ParamValue::real32(std::stof(value));
       auto r = params.set(name, v);
-      if (!r) return "param set: " + r.error().message + "\n";
+      if (!r) return {"param set: " + r.error().message + "\n", 1};
       ++params_set;
       return name + ": " + v.to_string() + "\n";
     } catch (const std::exception&) {
-      return "param set: '" + value + "' is not a number\n";
+      return {"param set: '" + value + "' is not a number\n", 1};
     }
+  }
+  // A command the board has, with a verb it does not know (or `a; b`, which this shell does not
+  // split): the module's usage and return 1, as PX4's ModuleBase does, not "command not found".
+  const std::string name = cmd.substr(0, cmd.find(' '));
+  for (const char* known : {"dsp_hitl", "commander", "ekf2", "mavlink", "param", "ver"}) {
+    if (name == known)
+      return {name + ": unknown command '" + (cmd.size() > name.size() ? cmd.substr(name.size() + 1) : std::string()) +
+                  "' (one command per line; help lists what this shell runs)\n",
+              1};
   }
   return "nsh: " + line.substr(0, line.find(' ')) + ": command not found\n";
 }

@@ -402,8 +402,11 @@ TEST(SimE2E, ImuSamplesBeyondFullScaleAreClippedCountedAndSaid) {
   Process sim(board.sim_args({"--duration", "1", "--speed", "0", "--no-vio", "--vehicle", dir + "/small_imu.json"}));
   EXPECT_EQ(sim.wait(60s), 0) << sim.err();
   board.stop();
-  for (const auto& f : board.frames())
-    if (f.is<msg::HilSensor>()) EXPECT_LE(std::abs(f.as<msg::HilSensor>().zacc), 4.9f);
+  for (const auto& f : board.frames()) {
+    if (f.is<msg::HilSensor>()) {
+      EXPECT_LE(std::abs(f.as<msg::HilSensor>().zacc), 4.9f);
+    }
+  }
   const auto j = last_json(sim.out());
   EXPECT_EQ(j["imu_saturated"]["accel"], 250);
   EXPECT_EQ(j["imu_saturated"]["gyro"], 0);
@@ -433,7 +436,25 @@ TEST(SimE2E, BadInputExitsTwoWithAClearLine) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("time_constant_up_s"), std::string::npos) << bad.err;
   EXPECT_EQ(test::run_hitl({"sim", "--px4-sitl", "ftp:1"}).exit_code, 2);
+  // The same port for the clients and the HIL link's local port: say so, not "another process".
+  const auto same = std::to_string(test::free_udp_port());
+  auto clash = test::run_hitl({"sim", "--bind", "127.0.0.1", "--local-port", same, "--clients", same, "--duration", "1"});
+  EXPECT_EQ(clash.exit_code, 2);
+  EXPECT_NE(clash.err.find("--clients " + same + " is also the --local-port"), std::string::npos) << clash.err;
   EXPECT_EQ(test::run_hitl({"sim", "--speed", "-1"}).exit_code, 2);
+  // A number too large for a double (1e400) in a JSON file aborted the process (SIGABRT, an
+  // uncaught nlohmann out_of_range) instead of a named error.
+  std::ofstream(dir + "/big.json") << R"({"sensors": {"imu": {"accel_range_m_s2": 1e400}}})";
+  std::ofstream(dir + "/bigw.json") << R"({"home": {"lat_deg": 1e400}})";
+  std::ofstream(dir + "/bigt.json") << R"({"waypoints": [{"t": 0, "x": 1e400, "y": 0, "z": 2, "yaw": 0}]})";
+  for (const auto& args : std::vector<std::vector<std::string>>{{"sim", "--vehicle", dir + "/big.json", "--clients", "0"},
+                                                                {"sim", "--world", dir + "/bigw.json", "--clients", "0"},
+                                                                {"sim", "-t", dir + "/bigt.json", "--clients", "0"}}) {
+    auto big = test::run_hitl(args);
+    EXPECT_EQ(big.exit_code, 2) << args[2] << ": " << big.err;
+    EXPECT_NE(big.err.find("1e400"), std::string::npos) << big.err;
+    EXPECT_EQ(big.err.find("terminate called"), std::string::npos) << big.err;
+  }
 }
 
 TEST(SimE2E, RecordWriteErrorIsSaidAtOnceAndExitsOne) {
@@ -445,6 +466,21 @@ TEST(SimE2E, RecordWriteErrorIsSaidAtOnceAndExitsOne) {
   sim.signal(SIGINT);
   EXPECT_EQ(sim.wait(30s), 1) << sim.err();
   EXPECT_EQ(last_json(sim.out())["record_error"], "writing '/dev/full' failed: No space left on device");
+}
+
+TEST(SimE2E, CtrlCEndsASlowMotionSessionAtOnce) {
+  // At --speed 0.001 a 4 ms step is 4 s of wall time; Ctrl-C used to wait for the step's deadline
+  // (at --speed 1e-9: never, the sleep restarting on each signal), with no summary.
+  Board board;
+  board.serve([](const msg::HilSensor&, uint64_t) { return std::nullopt; });
+  Process sim(board.sim_args({"--duration", "60", "--no-vio", "--speed", "1e-6"}));
+  ASSERT_TRUE(sim.wait_for_stderr("Ctrl-C to stop", 10s)) << sim.err();
+  std::this_thread::sleep_for(300ms);
+  const auto t0 = std::chrono::steady_clock::now();
+  sim.signal(SIGINT);
+  EXPECT_EQ(sim.wait(5s), 0) << sim.err();
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 1s);
+  EXPECT_EQ(last_json(sim.out())["end"], "stopped") << sim.out();
 }
 
 TEST(SimE2E, NumberOptionsRefuseNanInfAndAbsurdValuesPlainly) {
@@ -483,9 +519,19 @@ TEST(SimE2E, PhysicsStepPacesRealTimeOrIsRefusedSayingWhy) {
   Process sim(board.sim_args({"--duration", "2", "--no-vio", "--world", dir + "/fine.json"}));
   EXPECT_EQ(sim.wait(60s), 0) << sim.err();
   const auto j = last_json(sim.out());
-  EXPECT_NEAR(j["sent"]["HIL_SENSOR"]["count"].get<int>(), 500, 1);  // 250 Hz of simulated time
+  EXPECT_EQ(j["sent"]["HIL_SENSOR"]["count"].get<int>(), 500);  // 250 Hz of simulated time
   EXPECT_NEAR(j["real_time_factor"].get<double>(), 1.0, 0.1);  // paced by the 2 ms step: was 0.50
   EXPECT_GE(j["wall_time_s"].get<double>(), 1.8);
+  // On the 4 ms grid as with the default step (4000, 8000, ...): the first used to go out after the
+  // first 2 ms step, at 2000 us, 2 ms before the second.
+  board.stop();
+  std::vector<uint64_t> stamps;
+  for (const auto& f : board.frames()) {
+    if (f.is<msg::HilSensor>()) stamps.push_back(f.as<msg::HilSensor>().time_usec);
+  }
+  ASSERT_FALSE(stamps.empty());
+  EXPECT_EQ(stamps.front(), 4000u);
+  for (std::size_t i = 0; i < stamps.size(); ++i) EXPECT_EQ(stamps[i] % 4000, 0u) << "HIL_SENSOR " << i << " at " << stamps[i] << " us";
 }
 
 TEST(SimE2E, RoutesClientsToTheBoardAndTelemetryBack) {

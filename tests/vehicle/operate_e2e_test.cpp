@@ -123,6 +123,15 @@ TEST(OperateE2E, ShellExitStatusFollowsTheBoardsCommand) {
   // A command the board does not have.
   auto unknown = shell({"-c", "no_such_command"});
   EXPECT_EQ(unknown.exit_code, 1) << unknown.out << unknown.err;
+  // A command the board has, used wrongly, fails as PX4's module does (usage, return 1), never as
+  // "nsh: dsp_hitl: command not found" (which said dsp_hitl was missing after `dsp_hitl stop; ...`).
+  auto two = shell({"-c", "dsp_hitl stop; dsp_hitl status"});
+  EXPECT_EQ(two.exit_code, 1) << two.out << two.err;
+  EXPECT_EQ(two.out.find("command not found"), std::string::npos) << two.out;
+  EXPECT_NE(two.out.find("Command 'dsp_hitl' failed, returned 1."), std::string::npos) << two.out;
+  auto bad_param = shell({"-c", "param set NO_SUCH_PARAM 1"});
+  EXPECT_EQ(bad_param.exit_code, 1) << bad_param.out << bad_param.err;
+  EXPECT_NE(bad_param.out.find("Command 'param' failed, returned 1."), std::string::npos) << bad_param.out;
 
   auto start = shell({"-c", "dsp_hitl start"});
   EXPECT_EQ(start.exit_code, 0) << start.out << start.err;

@@ -50,6 +50,8 @@ TEST(VioServerConfig, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(error_of(R"({"receiver_port": 0})").find("\"receiver_port\""), std::string::npos);
   EXPECT_NE(error_of(R"({"receiver_port": 65536})").find("\"receiver_port\""), std::string::npos);
   EXPECT_NE(error_of(R"({"receiver_port": 14570.5})").find("\"receiver_port\""), std::string::npos);
+  // A number beyond a double's range is a named error, not an uncaught exception (abort).
+  EXPECT_NE(error_of(R"({"receiver_port": 1e400})").find("not valid JSON"), std::string::npos);
   EXPECT_EQ(error_of(R"({"receiver_ip": "localhost"})").rfind("test.conf: \"receiver_ip\" must be an IPv4 address", 0), 0u);
   EXPECT_NE(error_of(R"({"receiver_ip": 1234})").find("\"receiver_ip\" must be a string"), std::string::npos);
   EXPECT_NE(error_of(R"({"reciever_port": 14570})").find("\"reciever_port\" is not a key"), std::string::npos);
