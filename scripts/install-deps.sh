@@ -14,8 +14,9 @@ packages=(
 if [ "${1:-}" = "--test" ]; then
   # Tests also use: clang + its sanitizer/fuzzer runtime (libFuzzer), node + npm (node-mavlink conformance),
   # tmux (terminal UI end-to-end), shellcheck (board scripts), g++-aarch64-linux-gnu and file (the
-  # arm64 board packages, test label "package").
-  packages+=(clang libclang-rt-dev tmux shellcheck g++-aarch64-linux-gnu file)
+  # arm64 board packages, test label "package"), ninja-build (the PX4 glue's stand-in check with PX4's
+  # usual generator, tests/target).
+  packages+=(clang libclang-rt-dev tmux shellcheck g++-aarch64-linux-gnu file ninja-build)
   # Completions, man page and .deb (tests/ecosystem): zsh and fish run the completion scripts,
   # groff-base, man-db and mandoc render and lint the man page, dpkg-dev's dpkg-shlibdeps computes
   # the package's Depends (file finds the binaries for it).
