@@ -131,6 +131,8 @@ std::string explain_parse_error(CLI::App& app, const CLI::ParseError& error, con
              command_path(chain) + " --help lists them)";
     }
   }
+  // A value its option's check refused: said as the other mistakes are, with the command it was typed for.
+  if (dynamic_cast<const CLI::ValidationError*>(&error) != nullptr) return command_path(chain) + ": " + what;
   return {};
 }
 
