@@ -143,21 +143,26 @@ TEST(ParamClient, DownloadReRequestsMissingIndicesAndIgnoresDuplicates) {
   EXPECT_EQ((*all)[7].value, ParamValue::real32(7));
 }
 
+/// `reply` as a board's shell sends it: SERIAL_CONTROL replies of up to 70 bytes each.
+void send_shell_reply(test::MavlinkPeer& peer, const std::string& reply) {
+  for (std::size_t pos = 0; pos < reply.size(); pos += 70) {
+    msg::SerialControl out;
+    out.device = 10;
+    out.flags = 1;
+    const auto n = std::min<std::size_t>(70, reply.size() - pos);
+    out.count = static_cast<uint8_t>(n);
+    std::memcpy(out.data.data(), reply.data() + pos, n);
+    peer.send(out);
+  }
+}
+
 TEST(ShellClient, CollectsOutputUntilThePromptAndDropsTheEcho) {
   ScriptedBoard board([&](const mavlink::Frame& f, test::MavlinkPeer& peer) {
     if (!f.is<msg::SerialControl>()) return;
     const auto in = f.as<msg::SerialControl>();
     const std::string text(reinterpret_cast<const char*>(in.data.data()), in.count);
     std::string reply = text == "\n" ? "\npxh> " : text + "line one\nline two that is long enough to need a second chunk of output\npxh> ";
-    for (std::size_t pos = 0; pos < reply.size(); pos += 70) {
-      msg::SerialControl out;
-      out.device = 10;
-      out.flags = 1;
-      const auto n = std::min<std::size_t>(70, reply.size() - pos);
-      out.count = static_cast<uint8_t>(n);
-      std::memcpy(out.data.data(), reply.data() + pos, n);
-      peer.send(out);
-    }
+    send_shell_reply(peer, reply);
   });
   auto link = connect_to(board.port());
   ShellClient shell(*link);
@@ -178,15 +183,7 @@ TEST(ShellPoller, AnEmptyReplyIsAShellThatDidNotAnswerAndItKeepsAsking) {
     std::string reply = "\npxh> ";
     if (text != "\n" && polls.fetch_add(1) >= 2)  // the first two polls: an empty reply
       reply = text + target::dsp_hitl_status_text(true, {}, {}) + "pxh> ";
-    for (std::size_t pos = 0; pos < reply.size(); pos += 70) {
-      msg::SerialControl out;
-      out.device = 10;
-      out.flags = 1;
-      const auto n = std::min<std::size_t>(70, reply.size() - pos);
-      out.count = static_cast<uint8_t>(n);
-      std::memcpy(out.data.data(), reply.data() + pos, n);
-      peer.send(out);
-    }
+    send_shell_reply(peer, reply);
   });
   LinkOptions o;
   o.connect = "udp:127.0.0.1:" + std::to_string(board.port());
