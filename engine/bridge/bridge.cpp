@@ -270,12 +270,7 @@ class Bridge {
   void tick(double now) {
     // Our HEARTBEAT (an onboard component, not a ground station: PX4's GCS-loss logic must not
     // count the bridge) makes a fresh PX4 instance take this port as its partner.
-    msg::Heartbeat hb;
-    hb.type = static_cast<uint8_t>(mavlink::MavType::Onboard);
-    hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
-    hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
-    hb.mavlink_version = mavlink::kMavlinkVersion;
-    send_own(board_link_, hb);
+    send_own(board_link_, mavlink::onboard_heartbeat());
     msg::Timesync ts;
     ts.tc1 = 0;
     ts.ts1 = static_cast<int64_t>(monotonic_us()) * 1000;

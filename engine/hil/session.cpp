@@ -19,6 +19,7 @@
 #include "engine/mavlink/enums.h"
 #include "engine/mavlink/frame_encoder.h"
 #include "engine/mavlink/frame_parser.h"
+#include "engine/mavlink/heartbeat.h"
 #include "engine/mavlink/messages.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/mavlink/wire_units.h"
@@ -411,12 +412,7 @@ struct Session::Impl {
   void send_status_to_clients(double now_s) {
     if (!clients || now_s < next_status_wall_s) return;
     next_status_wall_s = now_s + 1.0;
-    mavlink::msg::Heartbeat hb;
-    hb.type = static_cast<uint8_t>(mavlink::MavType::Generic);
-    hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
-    hb.system_status = static_cast<uint8_t>(paused ? mavlink::MavState::Standby : mavlink::MavState::Active);
-    hb.mavlink_version = mavlink::kMavlinkVersion;
-    broadcast_own(hb);
+    broadcast_own(mavlink::simulator_heartbeat(paused ? mavlink::MavState::Standby : mavlink::MavState::Active));
     const auto boot_ms = static_cast<uint32_t>((now_s - start_wall_s) * 1000.0);
     mavlink::msg::NamedValueFloat rtf;
     rtf.time_boot_ms = boot_ms;
@@ -510,12 +506,7 @@ struct Session::Impl {
     if (pilot) fly_pilot(state, observer);
     if (time_offset_s + state.time_s + 1e-9 >= next_heartbeat_s) {
       next_heartbeat_s += 1.0;
-      mavlink::msg::Heartbeat hb;
-      hb.type = static_cast<uint8_t>(mavlink::MavType::Generic);
-      hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
-      hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
-      hb.mavlink_version = mavlink::kMavlinkVersion;
-      send_to_stack(hb);
+      send_to_stack(mavlink::simulator_heartbeat());
     }
     flush_to_stack();
     actuators.take_new();  // answers counted from here on belong to these sensors
