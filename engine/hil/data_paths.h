@@ -19,11 +19,11 @@
 #include "engine/mavlink/frame.h"
 #include "engine/mavlink/sequence_tracker.h"
 #include "engine/telemetry/stream_meter.h"
+#include "target/core/hil_spec.h"
 
 namespace hitl::hil {
 
-/// HIL_ACTUATOR_CONTROLS from the board outside lockstep (spec: "HIL_ACTUATOR_CONTROLS (200 Hz)").
-inline constexpr double kActuatorStreamRate_hz = 200.0;
+using ::hitl::kActuatorStreamRate_hz;  // the board's stream outside lockstep: target/core/hil_spec.h
 
 struct DataPathStats {
   std::string name;          ///< "IMU", "mag", "baro", "GPS", "ODOMETRY", "actuators"

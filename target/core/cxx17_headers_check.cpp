@@ -5,6 +5,7 @@
 #include "target/core/dsp_hitl_status.h"
 #include "target/core/hil_gps.h"
 #include "target/core/hil_inputs.h"
+#include "target/core/hil_spec.h"
 #include "target/core/hil_sensor_fields.h"
 #include "target/core/hil_split.h"
 #include "target/core/hil_uorb_messages.h"

@@ -37,6 +37,7 @@
 #include <optional>
 
 #include "target/core/hil_inputs.h"
+#include "target/core/hil_spec.h"
 #include "target/core/hil_uorb_messages.h"
 #include "target/core/periodic_schedule.h"
 #include "target/core/px4_topics.h"
@@ -48,7 +49,7 @@ namespace hitl::target {
 constexpr float pressure_Pa_from_hPa(float pressure_hPa) { return pressure_hPa * 100.0F; }
 
 struct HilSplitConfig {
-  uint64_t imu_period_us = 4000;       ///< HIL_IMU_PUBLISH_INTERVAL_US (250 Hz)
+  uint64_t imu_period_us = kHilImuPeriod_us;  ///< HIL_IMU_PUBLISH_INTERVAL_US (250 Hz)
   uint64_t imu_phase_us = 2000;        ///< first IMU publication this long after the stream starts
   uint64_t mag_baro_period_us = 10000; ///< 100 Hz
   uint64_t battery_period_us = kSimBatteryPeriod_us;
