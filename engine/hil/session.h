@@ -13,12 +13,13 @@
 #include <vector>
 
 #include "engine/common/expected.h"
+#include "engine/common/severity.h"
 #include "engine/hil/data_paths.h"
 #include "engine/hil/session_config.h"
 
 namespace hitl::hil {
 
-enum class Severity { Info, Warning, Error };
+using Severity = ::hitl::Severity;  // engine/common/severity.h
 
 struct SessionEvent {
   Severity severity = Severity::Info;
