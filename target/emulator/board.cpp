@@ -19,6 +19,8 @@ namespace {
 namespace msg = mavlink::msg;
 // The firmware whose parameter set the board follows (the "#absent" notes name firmwares this way).
 constexpr const char* kEmulatedFirmware = "PX4 v1.16";
+/// The loop waits for input at most this long, so streams and status stay on time.
+constexpr uint64_t kMaxWait_us = 5000;
 
 const char* landed_name(mavlink::MavLandedState s) {
   switch (s) {
@@ -206,15 +208,15 @@ Expected<Board::EndReason> Board::run(const std::atomic<bool>& stop, Observer& o
     const bool wall_clock = s.on_wall_clock();
     if (wall_clock) s.now_us = monotonic_us() - s.start_us;
     if (s.config.duration_s > 0 && static_cast<double>(s.now_us) * 1e-6 >= s.config.duration_s) return EndReason::Duration;
-    // Wait for input until the next thing is due (at most 5 ms).
+    // Wait for input until the next thing is due (at most kMaxWait_us).
     pollfd fds[3];
     nfds_t n = 0;
     fds[n++] = {s.hil->fd(), POLLIN, 0};
     if (s.gcs) fds[n++] = {s.gcs->fd(), POLLIN, 0};
     if (s.vio) fds[n++] = {s.vio->fd(), POLLIN, 0};
-    int timeout_ms = 5;
+    int timeout_ms = static_cast<int>(kMaxWait_us / 1000);
     if (wall_clock) {
-      const uint64_t next = std::min(s.split.next_due_us(), s.now_us + 5000);
+      const uint64_t next = std::min(s.split.next_due_us(), s.now_us + kMaxWait_us);
       timeout_ms = static_cast<int>(next > s.now_us ? (next - s.now_us + 999) / 1000 : 0);
     }
     ::poll(fds, n, timeout_ms);

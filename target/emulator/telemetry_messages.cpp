@@ -12,6 +12,14 @@ namespace wire = mavlink::wire;
 
 namespace {
 constexpr int64_t period_us(double rate_hz) { return static_cast<int64_t>(1e6 / rate_hz); }
+
+/// ATTITUDE and ATTITUDE_QUATERNION: body rates, FRD.
+template <class M>
+void set_body_rates(M& m, const FlightState& s) {
+  m.rollspeed = static_cast<float>(s.w_FRD_rad_s[0]);
+  m.pitchspeed = static_cast<float>(s.w_FRD_rad_s[1]);
+  m.yawspeed = static_cast<float>(s.w_FRD_rad_s[2]);
+}
 }  // namespace
 
 bool stream_known(uint32_t msgid) {
@@ -91,9 +99,7 @@ msg::Attitude attitude(const FlightState& s, uint32_t time_boot_ms) {
   m.roll = static_cast<float>(s.roll_rad);
   m.pitch = static_cast<float>(s.pitch_rad);
   m.yaw = static_cast<float>(s.yaw_rad);
-  m.rollspeed = static_cast<float>(s.w_FRD_rad_s[0]);
-  m.pitchspeed = static_cast<float>(s.w_FRD_rad_s[1]);
-  m.yawspeed = static_cast<float>(s.w_FRD_rad_s[2]);
+  set_body_rates(m, s);
   return m;
 }
 
@@ -104,9 +110,7 @@ msg::AttitudeQuaternion attitude_quaternion(const FlightState& s, uint32_t time_
   m.q2 = static_cast<float>(s.q_FRD_to_NED[1]);
   m.q3 = static_cast<float>(s.q_FRD_to_NED[2]);
   m.q4 = static_cast<float>(s.q_FRD_to_NED[3]);
-  m.rollspeed = static_cast<float>(s.w_FRD_rad_s[0]);
-  m.pitchspeed = static_cast<float>(s.w_FRD_rad_s[1]);
-  m.yawspeed = static_cast<float>(s.w_FRD_rad_s[2]);
+  set_body_rates(m, s);
   return m;
 }
 
