@@ -177,7 +177,7 @@ class Bridge {
       } else if (e->tcp && e->tcp->wait_readable(0)) {
         auto bytes = e->tcp->receive();
         if (!bytes) {
-          observer_.on_event("--endpoint " + e->spec.text + ": connection closed; reconnecting every 2 s", true);
+          observer_.on_event("--endpoint " + e->spec.text + ": connection closed; reconnecting every 2 s", Severity::Warning);
           e->tcp.reset();
           e->next_connect_s = now + kReconnectPeriod_s;
         } else {
@@ -195,10 +195,10 @@ class Bridge {
       if (c) {
         e->tcp.emplace(std::move(c.value()));
         e->parser = std::make_unique<mavlink::FrameParser>(messages_);
-        observer_.on_event("--endpoint " + e->spec.text + ": connected", false);
+        observer_.on_event("--endpoint " + e->spec.text + ": connected", Severity::Info);
       } else if (!e->warned) {
         e->warned = true;
-        observer_.on_event(c.error().message + "; retrying every 2 s", true);
+        observer_.on_event(c.error().message + "; retrying every 2 s", Severity::Warning);
       }
     }
   }
@@ -233,7 +233,7 @@ class Bridge {
           observer_.on_event("the board link shows more than " + std::to_string(kMaxLossSources) +
                                  " sources (sysid/compid); loss is tracked for the first ones only (frames of others "
                                  "counted: untracked_frames)",
-                             true);
+                             Severity::Warning);
         return;
       }
       it = sequences_.emplace(key, mavlink::SequenceTracker{}).first;
@@ -252,12 +252,12 @@ class Bridge {
                     "board gone: nothing from %s for %.1f s (cable unplugged, PX4 restarted?); every socket stays open, "
                     "traffic resumes when it is back",
                     board_address_->to_string().c_str(), silent_s);
-      observer_.on_event(text, true);
+      observer_.on_event(text, Severity::Warning);
     } else if (gone_ && silent_s < kBoardGoneAfter_s) {
       gone_ = false;
       char text[120];
       std::snprintf(text, sizeof text, "board back after %.1f s", now - gone_since_s_);
-      observer_.on_event(text, false);
+      observer_.on_event(text, Severity::Info);
     }
   }
 
@@ -279,10 +279,10 @@ class Bridge {
     if (timesync_sent_ns_.size() > kTimesyncRemembered) timesync_sent_ns_.pop_front();
     send_own(board_link_, ts);
     // Each destination's first refused send, said at once; later ones are counted (send_errors).
-    for (const auto& text : board_->take_send_errors()) observer_.on_event(text, true);
+    for (const auto& text : board_->take_send_errors()) observer_.on_event(text, Severity::Warning);
     for (const auto& e : endpoints_)
       if (e->udp)
-        for (const auto& text : e->udp->take_send_errors()) observer_.on_event("--endpoint " + e->spec.text + ": " + text, true);
+        for (const auto& text : e->udp->take_send_errors()) observer_.on_event("--endpoint " + e->spec.text + ": " + text, Severity::Warning);
     observer_.on_health(health(now));
   }
 
@@ -357,7 +357,7 @@ Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const st
   Bridge bridge(config, observer);
   if (auto st = bridge.open(); !st) return st;
   if (opened != nullptr) *opened = true;
-  observer.on_event(bridge.describe(), false);
+  observer.on_event(bridge.describe(), Severity::Info);
   return bridge.run(stop);
 }
 

@@ -18,6 +18,7 @@
 
 #include "engine/bridge/endpoint_spec.h"
 #include "engine/common/expected.h"
+#include "engine/common/severity.h"
 #include "engine/hil/session_config.h"
 #include "engine/vehicle/vehicle_link.h"
 
@@ -70,7 +71,7 @@ struct BridgeHealth {
 class BridgeObserver {
  public:
   virtual ~BridgeObserver() = default;
-  virtual void on_event(const std::string& text, bool warning) = 0;
+  virtual void on_event(const std::string& text, Severity severity) = 0;
   virtual void on_health(const BridgeHealth& health) = 0;
 };
 
