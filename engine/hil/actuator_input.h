@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/messages.h"
 #include "engine/model/multicopter.h"
 
 namespace hitl::hil {

@@ -15,15 +15,14 @@
 #include <tuple>
 #include <vector>
 
+#include "base/mavlink/frame.h"
+#include "base/mavlink/sequence_tracker.h"
 #include "engine/hil/session_config.h"
-#include "engine/mavlink/frame.h"
-#include "engine/mavlink/sequence_tracker.h"
 #include "engine/telemetry/stream_meter.h"
 
 namespace hitl::hil {
 
-/// HIL_ACTUATOR_CONTROLS from the board outside lockstep (spec: "HIL_ACTUATOR_CONTROLS (200 Hz)").
-inline constexpr double kActuatorStreamRate_hz = 200.0;
+using ::hitl::kActuatorStreamRate_hz;  // base/contract/data_rates.h
 
 struct DataPathStats {
   std::string name;          ///< "IMU", "mag", "baro", "GPS", "ODOMETRY", "actuators"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/hil/data_paths.h"
 #include "engine/hil/session_config.h"
 

@@ -1,6 +1,6 @@
 #include "engine/model/config_json.h"
 
-#include "engine/common/bounded_read.h"
+#include "base/common/bounded_read.h"
 
 #include <cmath>
 #include <fstream>

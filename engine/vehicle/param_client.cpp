@@ -4,7 +4,7 @@
 #include <map>
 #include <optional>
 
-#include "engine/mavlink/enums.h"
+#include "base/mavlink/enums.h"
 #include "engine/vehicle/board_replies.h"
 
 namespace hitl::vehicle {

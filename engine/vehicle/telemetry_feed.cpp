@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "engine/common/clock.h"
-#include "engine/mavlink/messages.h"
+#include "base/common/clock.h"
+#include "base/mavlink/messages.h"
 #include "engine/vehicle/patient_link.h"
 
 namespace hitl::vehicle {
