@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <iostream>
 
+#include "base/common/clock.h"
+#include "base/mavlink/enums.h"
 #include "cli/commands.h"
 #include "cli/link_options.h"
 #include "cli/number_check.h"
-#include "engine/common/clock.h"
-#include "engine/mavlink/enums.h"
 #include "engine/vehicle/command_client.h"
 
 namespace hitl::cli {

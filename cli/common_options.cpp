@@ -1,5 +1,5 @@
+#include "base/common/bounded_read.h"
 #include "cli/common_options.h"
-#include "engine/common/bounded_read.h"
 
 #include <unistd.h>
 

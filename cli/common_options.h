@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
-#include "engine/mavlink/message_set.h"
+#include "base/common/expected.h"
+#include "base/mavlink/message_set.h"
 
 namespace hitl::cli {
 
 // The exit codes of every command, the one table (README "Exit codes", the man page's EXIT STATUS;
-// tests/e2e/exit_codes_e2e_test.cpp holds each command to it).
+// tests/cli/exit_codes_e2e_test.cpp holds each command to it).
 /// Success: the command did what it was asked, every check passed.
 inline constexpr int kExitOk = 0;
 /// A check failed, the board refused a command, no board answered (no HEARTBEAT, or every send to

@@ -12,12 +12,12 @@
 #include "cli/commands.h"
 #include "cli/number_check.h"
 #include "cli/session_dashboard.h"
+#include "emulator/board.h"
 #include "engine/hil/session.h"
 #include "engine/model/x500_defaults.h"
 #include "engine/net/udp_endpoint.h"
 #include "engine/vehicle/telemetry_feed.h"
 #include "engine/vehicle/trajectory.h"
-#include "target/emulator/board.h"
 #include "tui/terminal.h"
 
 namespace hitl::cli {

@@ -7,12 +7,12 @@
 #include <iostream>
 #include <map>
 
+#include "base/common/clock.h"
+#include "base/mavlink/enums.h"
 #include "cli/commands.h"
 #include "cli/link_options.h"
 #include "cli/number_check.h"
-#include "engine/common/clock.h"
 #include "engine/hil/session_config.h"
-#include "engine/mavlink/enums.h"
 #include "engine/vehicle/command_client.h"
 #include "engine/vehicle/param_client.h"
 #include "engine/vehicle/trajectory_pilot.h"

@@ -7,9 +7,9 @@
 #include <optional>
 #include <set>
 
+#include "base/mavlink/enums.h"
 #include "cli/commands.h"
 #include "cli/number_check.h"
-#include "engine/mavlink/enums.h"
 #include "cli/traffic_table.h"
 #include "cli/value_types.h"
 #include "engine/inspect/expectations.h"

@@ -4,7 +4,7 @@
 
 #include "cli/commands.h"
 #include "cli/number_check.h"
-#include "target/emulator/board.h"
+#include "emulator/board.h"
 
 namespace hitl::cli {
 namespace {

@@ -17,7 +17,7 @@ if [ "${1:-}" = "--test" ]; then
   # arm64 board packages, test label "package"), ninja-build (the PX4 glue's stand-in check with PX4's
   # usual generator, tests/target).
   packages+=(clang libclang-rt-dev tmux shellcheck g++-aarch64-linux-gnu file ninja-build)
-  # Completions, man page and .deb (tests/ecosystem): zsh and fish run the completion scripts,
+  # Completions, man page and .deb (tests/completions, tests/cmake): zsh and fish run the completion scripts,
   # groff-base, man-db and mandoc render and lint the man page, dpkg-dev's dpkg-shlibdeps computes
   # the package's Depends (file finds the binaries for it).
   packages+=(zsh fish groff-base man-db mandoc dpkg-dev)

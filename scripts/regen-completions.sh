@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates every file made from hitl's command-line model: the shell completions in
 # completions/, the man page docs/hitl.1 and the config reference docs/config.md. Run it after
-# adding or changing a command or an option (tests/ecosystem fails until you do).
+# adding or changing a command or an option (tests/completions fails until you do).
 #
 #   scripts/regen-completions.sh               # builds build/cli/hitl first
 #   scripts/regen-completions.sh BUILD_DIR     # builds and uses BUILD_DIR/cli/hitl

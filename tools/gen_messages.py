@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Generate engine/mavlink/messages.h from the official MAVLink XML definitions.
+"""Generate base/mavlink/messages.h from the official MAVLink XML definitions.
 
 A developer tool, not a build step: the build uses the committed header and never
 needs the XML. Run it again when a message is added to MESSAGES below:
 
-    tools/gen_messages.py ../shared/mavlink/development.xml > engine/mavlink/messages.h
+    tools/gen_messages.py ../shared/mavlink/development.xml > base/mavlink/messages.h
 
 Field order on the wire follows the MAVLink rule: base fields sorted by element
 size, largest first (stable), extension fields after them in XML order. CRC_EXTRA
@@ -118,7 +118,7 @@ def main():
     w("#include <string_view>")
     w("#include <tuple>")
     w("")
-    w('#include "engine/mavlink/field_ref.h"')
+    w('#include "base/mavlink/field_ref.h"')
     w("")
     w("namespace hitl::mavlink::msg {")
     for name in MESSAGES:

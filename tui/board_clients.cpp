@@ -3,7 +3,6 @@
 #include <thread>
 
 #include "engine/vehicle/patient_link.h"
-#include "target/core/hil_split.h"
 #include "tui/collect.h"
 
 namespace hitl::tui {
@@ -26,14 +25,7 @@ bool is_command(Action a) {
 }  // namespace
 
 telemetry::DspHitlExpectedRates dsp_hitl_rates(const model::SensorsConfig& sensors) {
-  const target::HilSplitConfig split;
-  telemetry::DspHitlExpectedRates r;
-  r.imu_received_hz = 1e6 / static_cast<double>(split.imu_period_us);
-  r.imu_published_hz = r.imu_received_hz;
-  r.mag_baro_received_hz = 1e6 / static_cast<double>(split.mag_baro_period_us);
-  r.mag_published_hz = sensors.mag.rate_hz;
-  r.baro_published_hz = sensors.baro.rate_hz;
-  return r;
+  return telemetry::dsp_hitl_expected_rates(sensors.mag.rate_hz, sensors.baro.rate_hz);
 }
 
 BoardClients::BoardClients(uint16_t clients_port, std::optional<uint8_t> truth_sysid,

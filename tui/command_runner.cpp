@@ -11,7 +11,7 @@
 #include <climits>
 #include <cstring>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 
 namespace hitl::tui {
 

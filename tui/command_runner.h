@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 
 namespace hitl::tui {
 

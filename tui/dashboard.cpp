@@ -4,7 +4,7 @@
 #include <csignal>
 #include <cstring>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 #include "tui/keys.h"
 #include "tui/layout.h"
 #include "tui/panels.h"

@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "tui/actions.h"
 #include "tui/dashboard_model.h"
 

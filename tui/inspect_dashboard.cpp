@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/messages.h"
 #include "tui/draw.h"
 
 namespace hitl::tui {

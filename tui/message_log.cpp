@@ -1,7 +1,7 @@
 #include "tui/message_log.h"
 
-#include "engine/common/clock.h"
-#include "engine/mavlink/severity.h"
+#include "base/common/clock.h"
+#include "base/mavlink/severity.h"
 
 namespace hitl::tui {
 namespace {

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "tui/ncurses_screen.h"
 
 namespace hitl::tui {

@@ -10,11 +10,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/mavlink/crc.h"
-#include "engine/mavlink/frame_encoder.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/message_set.h"
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/crc.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
+#include "base/mavlink/messages.h"
 
 namespace {
 

@@ -17,8 +17,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/messages.h"
 #include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
 

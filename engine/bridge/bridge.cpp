@@ -7,13 +7,13 @@
 #include <deque>
 #include <memory>
 
-#include "engine/common/clock.h"
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/frame_encoder.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/heartbeat.h"
-#include "engine/mavlink/message_set.h"
-#include "engine/mavlink/sequence_tracker.h"
+#include "base/common/clock.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/heartbeat.h"
+#include "base/mavlink/message_set.h"
+#include "base/mavlink/sequence_tracker.h"
 #include "engine/net/client_port.h"
 #include "engine/net/tcp_client.h"
 #include "engine/net/udp_endpoint.h"

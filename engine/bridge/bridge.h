@@ -16,10 +16,12 @@
 #include <string>
 #include <vector>
 
+#include "base/common/expected.h"
+#include "base/common/severity.h"
+#include "base/contract/board_ports.h"
+#include "base/contract/data_rates.h"
+#include "base/contract/session_status.h"
 #include "engine/bridge/endpoint_spec.h"
-#include "engine/common/expected.h"
-#include "engine/common/severity.h"
-#include "engine/hil/session_config.h"
 #include "engine/vehicle/vehicle_link.h"
 
 namespace hitl::bridge {
@@ -34,7 +36,7 @@ struct BridgeConfig {
   uint16_t board_port = vehicle::kBoardGcsPort;     ///< --port: the board's GCS MAVLink instance
   uint16_t local_port = vehicle::kDirectLocalPort;  ///< --local-port: fixed (PX4's partner lock)
   std::string clients_bind = "127.0.0.1";
-  uint16_t clients_port = hil::kSessionClientPort;  ///< --clients (0: none)
+  uint16_t clients_port = hitl::kSessionClientPort;  ///< --clients (0: none)
   std::vector<EndpointSpec> endpoints;     ///< --endpoint
   double dedup_window_s = 0.1;             ///< --dedup (0: off)
   double duration_s = 0;                   ///< --duration (0: until stopped)

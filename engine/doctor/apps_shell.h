@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/net/adb_client.h"
 
 namespace hitl::doctor {

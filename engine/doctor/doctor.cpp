@@ -2,7 +2,12 @@
 
 #include <cmath>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
+#include "base/contract/board_ports.h"
+#include "base/contract/data_rates.h"
+#include "base/contract/session_status.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/messages.h"
 #include "engine/doctor/apps_shell.h"
 #include "engine/doctor/check_catalog.h"
 #include "engine/doctor/estimator_checks.h"
@@ -15,9 +20,6 @@
 #include "engine/doctor/session_probe.h"
 #include "engine/doctor/simulator_checks.h"
 #include "engine/doctor/vio_checks.h"
-#include "engine/hil/session_config.h"
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/messages.h"
 #include "engine/vehicle/param_client.h"
 #include "engine/vehicle/shell_client.h"
 #include "engine/vehicle/shell_poller.h"
@@ -201,7 +203,7 @@ std::vector<CheckResult> run_doctor(const DoctorOptions& o, const ResultSink& on
     for (const char* id : {check::kVioOdometry, check::kVioServer, check::kVioPipe, check::kVisionHub})
       emit(vio_skipped(id, "--no-vio: VIO not used"));
   } else {
-    emit(vio_odometry_check(b.vio_status, hil::kVioRate_hz * rtf));  // ODOMETRY is paced by simulated time
+    emit(vio_odometry_check(b.vio_status, hitl::kVioRate_hz * rtf));  // ODOMETRY is paced by simulated time
     emit(vio_server_check(b.vio_active));
     emit(vio_pipe_check(b.vio_pipes));
     emit(vision_hub_check(b.vision_hub));

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/mavlink/enums.h"
 #include "engine/doctor/check_catalog.h"
-#include "engine/mavlink/enums.h"
 #include "engine/telemetry/estimator_flags.h"
 
 namespace hitl::doctor {

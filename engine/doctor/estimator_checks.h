@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/doctor/check_result.h"
 #include "engine/doctor/observations.h"
 

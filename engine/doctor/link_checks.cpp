@@ -5,10 +5,11 @@
 #include <regex>
 #include <sstream>
 
+#include "base/contract/board_ports.h"
+#include "base/contract/data_rates.h"
+#include "base/contract/session_status.h"
+#include "base/mavlink/enums.h"
 #include "engine/doctor/check_catalog.h"
-#include "engine/hil/data_paths.h"
-#include "engine/hil/session_config.h"
-#include "engine/mavlink/enums.h"
 #include "engine/telemetry/px4_mode.h"
 
 namespace hitl::doctor {
@@ -105,9 +106,9 @@ CheckResult mavlink_instances_check(const Expected<std::string>& output, uint16_
 
 std::optional<double> expected_actuator_rate_hz(const SessionStatus& s) {
   if (!s.lockstep) return std::nullopt;
-  if (!*s.lockstep) return hil::kActuatorStreamRate_hz;
+  if (!*s.lockstep) return hitl::kActuatorStreamRate_hz;
   if (!s.rtf) return std::nullopt;
-  return *s.rtf / hil::kStepPeriod_s;
+  return *s.rtf / hitl::kStepPeriod_s;
 }
 
 CheckResult actuators_check(const SessionStatus& s) {

@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
+#include "base/contract/hil_actuators.h"
 #include "engine/doctor/check_result.h"
 #include "engine/doctor/observations.h"
-#include "target/core/hil_spec.h"
 
 namespace hitl::doctor {
 
-using ::hitl::kVoxl2ActuatorFlags;  // target/core/hil_spec.h
+using ::hitl::kVoxl2ActuatorFlags;  // base/contract/hil_actuators.h
 
 /// heartbeat: `link` is how doctor reached the autopilot, or why it could not.
 CheckResult heartbeat_check(const Expected<std::string>& link, const std::optional<HeartbeatSeen>& heartbeat);

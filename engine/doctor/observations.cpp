@@ -2,9 +2,11 @@
 
 #include <string_view>
 
-#include "engine/hil/session_config.h"
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/messages.h"
+#include "base/contract/board_ports.h"
+#include "base/contract/data_rates.h"
+#include "base/contract/session_status.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/messages.h"
 
 namespace hitl::doctor {
 namespace {
@@ -70,28 +72,28 @@ void ObservationTracker::on_other_frame(const mavlink::Frame& f, double now_s) {
     const auto m = f.as<msg::NamedValueFloat>();
     const std::string name = text_of(m.name);
     const double v = m.value;
-    if (name == hil::kStatusRtfName) {
+    if (name == hitl::kStatusRtfName) {
       s.sysid = f.sysid;
       s.rtf = v;
       ++s.reports;
     } else if (s.sysid && f.sysid == *s.sysid) {
-      if (name == hil::kStatusSpeedName) s.speed = v;
-      else if (name == hil::kStatusActuatorRateName) s.actuator_hz = v;
+      if (name == hitl::kStatusSpeedName) s.speed = v;
+      else if (name == hitl::kStatusActuatorRateName) s.actuator_hz = v;
     }
   } else if (f.is<msg::NamedValueInt>()) {
     const auto m = f.as<msg::NamedValueInt>();
     if (!s.sysid || f.sysid != *s.sysid) return;  // the session says "sim_rtf" first each second
     const std::string name = text_of(m.name);
-    if (name == hil::kStatusLateName) {
+    if (name == hitl::kStatusLateName) {
       s.last_late = SessionStatus::LateSample{now_s, m.value};
       if (!s.first_late) s.first_late = s.last_late;
-    } else if (name == hil::kStatusPauseName) {
+    } else if (name == hitl::kStatusPauseName) {
       s.paused = m.value != 0;
-    } else if (name == hil::kStatusLockstepName) {
+    } else if (name == hitl::kStatusLockstepName) {
       s.lockstep = m.value != 0;
-    } else if (name == hil::kStatusActuatorFlagsName) {
+    } else if (name == hitl::kStatusActuatorFlagsName) {
       s.actuator_flags = m.value;
-    } else if (name == hil::kStatusActuatorArmedName) {
+    } else if (name == hitl::kStatusActuatorArmedName) {
       s.actuator_armed = m.value;
     }
   } else if (f.is<msg::Heartbeat>()) {

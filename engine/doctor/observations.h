@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/mavlink/frame.h"
+#include "base/mavlink/frame.h"
 #include "engine/telemetry/vehicle_telemetry.h"
 
 namespace hitl::doctor {

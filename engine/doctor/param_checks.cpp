@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
+#include "base/contract/device_ids.h"
 #include "engine/doctor/check_catalog.h"
-#include "target/core/device_ids.h"
 
 namespace hitl::doctor {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/doctor/check_result.h"
 #include "engine/vehicle/params_check.h"
 

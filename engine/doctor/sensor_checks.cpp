@@ -3,9 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/contract/dsp_hitl_status.h"
 #include "engine/doctor/check_catalog.h"
-#include "target/core/dsp_hitl_status.h"
-#include "target/core/hil_split.h"
 
 namespace hitl::doctor {
 namespace {
@@ -25,14 +24,7 @@ bool not_found(const DspHitlRead& r) { return r.text && r.text.value().find("com
 }  // namespace
 
 telemetry::DspHitlExpectedRates spec_dsp_hitl_rates() {
-  const target::HilSplitConfig split;  // the spec's split, the one copy of its periods
-  telemetry::DspHitlExpectedRates r;
-  r.imu_received_hz = 1e6 / static_cast<double>(split.imu_period_us);
-  r.imu_published_hz = r.imu_received_hz;
-  r.mag_baro_received_hz = 1e6 / static_cast<double>(split.mag_baro_period_us);
-  r.mag_published_hz = 50.0;   // spec: magnetometer 50 Hz
-  r.baro_published_hz = 10.0;  // spec: barometer 10 Hz
-  return r;
+  return telemetry::dsp_hitl_expected_rates(50.0, 10.0);  // spec: magnetometer 50 Hz, barometer 10 Hz
 }
 
 bool dsp_hitl_counting(const DspHitlRead& first, const DspHitlRead& second) {

@@ -9,11 +9,11 @@
 #include <array>
 #include <cerrno>
 
-#include "engine/common/clock.h"
-#include "engine/mavlink/frame_encoder.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/heartbeat.h"
-#include "engine/mavlink/message_set.h"
+#include "base/common/clock.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/heartbeat.h"
+#include "base/mavlink/message_set.h"
 
 namespace hitl::doctor {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "engine/mavlink/frame.h"
+#include "base/mavlink/frame.h"
 
 namespace hitl::doctor {
 

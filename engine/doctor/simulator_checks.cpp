@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <string>
 
+#include "base/contract/board_ports.h"
+#include "base/contract/data_rates.h"
+#include "base/contract/session_status.h"
+#include "base/mavlink/enums.h"
 #include "engine/doctor/check_catalog.h"
-#include "engine/hil/session_config.h"
-#include "engine/mavlink/enums.h"
 
 namespace hitl::doctor {
 namespace {
@@ -60,7 +62,7 @@ CheckResult late_ticks_check(const SessionStatus& s) {
     return make_result(check::kLateTicks, Verdict::Skip, "the session reported late ticks only once");
   const double dt_s = s.last_late->t_s - s.first_late->t_s;
   const int64_t late = static_cast<int64_t>(s.last_late->late) - s.first_late->late;
-  const double ticks = dt_s * s.rtf.value_or(1.0) / hil::kStepPeriod_s;
+  const double ticks = dt_s * s.rtf.value_or(1.0) / hitl::kStepPeriod_s;
   const std::string saw = std::to_string(late) + " late of ~" + fixed(ticks, 0) + " ticks in " + fixed(dt_s, 1) + " s (" +
                           std::to_string(s.last_late->late) + " since the start)";
   if (late <= 0) return make_result(check::kLateTicks, Verdict::Pass, saw);

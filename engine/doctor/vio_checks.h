@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/doctor/check_result.h"
 
 namespace hitl::doctor {

@@ -1,6 +1,6 @@
 #include "engine/hil/actuator_input.h"
 
-#include "engine/mavlink/enums.h"
+#include "base/mavlink/enums.h"
 
 namespace hitl::hil {
 

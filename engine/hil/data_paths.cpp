@@ -1,6 +1,6 @@
 #include "engine/hil/data_paths.h"
 
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/messages.h"
 
 namespace hitl::hil {
 namespace {

@@ -15,15 +15,14 @@
 #include <tuple>
 #include <vector>
 
+#include "base/mavlink/frame.h"
+#include "base/mavlink/sequence_tracker.h"
 #include "engine/hil/session_config.h"
-#include "engine/mavlink/frame.h"
-#include "engine/mavlink/sequence_tracker.h"
 #include "engine/telemetry/stream_meter.h"
-#include "target/core/hil_spec.h"
 
 namespace hitl::hil {
 
-using ::hitl::kActuatorStreamRate_hz;  // the board's stream outside lockstep: target/core/hil_spec.h
+using ::hitl::kActuatorStreamRate_hz;  // base/contract/data_rates.h
 
 struct DataPathStats {
   std::string name;          ///< "IMU", "mag", "baro", "GPS", "ODOMETRY", "actuators"

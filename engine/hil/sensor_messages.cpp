@@ -3,9 +3,9 @@
 #include <array>
 #include <cmath>
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/hil_sensor_fields.h"
-#include "engine/mavlink/wire_units.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/hil_sensor_fields.h"
+#include "base/mavlink/wire_units.h"
 
 namespace hitl::hil {
 namespace {

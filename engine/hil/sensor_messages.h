@@ -3,7 +3,7 @@
 // HIL_GPS, ODOMETRY from ground truth, HIL_STATE_QUATERNION.
 #pragma once
 
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/messages.h"
 #include "engine/sensors/sensor_suite.h"
 
 namespace hitl::hil {

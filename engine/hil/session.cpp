@@ -1,6 +1,6 @@
 #include "engine/hil/session.h"
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 #include <sched.h>
 #include <sys/prctl.h>
 #include <sys/mman.h>
@@ -11,24 +11,24 @@
 #include <algorithm>
 #include <optional>
 
+#include "base/mavlink/enums.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/heartbeat.h"
+#include "base/mavlink/messages.h"
+#include "base/mavlink/wire_units.h"
 #include "engine/hil/actuator_input.h"
 #include "engine/hil/data_paths.h"
 #include "engine/hil/pacer.h"
 #include "engine/hil/sensor_messages.h"
 #include "engine/hil/step_check.h"
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/frame_encoder.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/heartbeat.h"
-#include "engine/mavlink/messages.h"
 #include "engine/mavlink/tlog.h"
-#include "engine/mavlink/wire_units.h"
 #include "engine/model/multicopter.h"
 #include "engine/model/touchdown_monitor.h"
 #include "engine/net/client_port.h"
-#include "engine/router/router.h"
 #include "engine/net/tcp_server.h"
 #include "engine/net/udp_endpoint.h"
+#include "engine/router/router.h"
 #include "engine/sensors/sensor_suite.h"
 #include "engine/telemetry/health.h"
 #include "engine/vehicle/trajectory_pilot.h"

@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
-#include "engine/common/severity.h"
+#include "base/common/expected.h"
+#include "base/common/severity.h"
 #include "engine/hil/data_paths.h"
 #include "engine/hil/session_config.h"
 
 namespace hitl::hil {
 
-using Severity = ::hitl::Severity;  // engine/common/severity.h
+using Severity = ::hitl::Severity;  // base/common/severity.h
 
 struct SessionEvent {
   Severity severity = Severity::Info;

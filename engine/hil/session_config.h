@@ -7,45 +7,33 @@
 #include <string>
 #include <string_view>
 
-#include "engine/mavlink/frame.h"
+#include "base/contract/board_ports.h"
+#include "base/contract/data_rates.h"
+#include "base/contract/session_status.h"
+#include "base/mavlink/frame.h"
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/vehicle/trajectory_pilot.h"
-#include "target/core/board_ports.h"
 
 namespace hitl::hil {
 
-using ::hitl::kBoardHilPort;       // the port table: target/core/board_ports.h
+using ::hitl::kBoardHilPort;       // the port table: base/contract/board_ports.h
 using ::hitl::kBoardVioPort;
 using ::hitl::kSessionClientPort;
 using ::hitl::kSimLocalPort;
 inline constexpr uint16_t kPx4SitlTcpPort = 4560;    ///< PX4 SITL's simulator_mavlink (instance 0)
-inline constexpr double kStepPeriod_s = 0.004;       ///< physics step and HIL_SENSOR period
-inline constexpr double kVioRate_hz = 250.0;
+using ::hitl::kStepPeriod_s;       // the rates: base/contract/data_rates.h
+using ::hitl::kVioRate_hz;
 /// Lockstep: a flight stack that answered once and then stays silent this long (wall time, pauses
 /// excluded) is gone; the session ends (exit 1) instead of stepping on without it.
 inline constexpr double kLockstepGiveUp_s = 10.0;
-inline constexpr uint8_t kSimulatorSystemId = 250;   ///< the simulator's own identity (not a vehicle)
-inline constexpr uint8_t kSimulatorComponentId = 1;
-/// ODOMETRY comes from its own component (MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY), with its own
-/// sequence, so a recording of both links shows no false loss.
-inline constexpr uint8_t kVioComponentId = 197;
 /// Ground truth for clients (trajectory tracking error, the dashboard): ODOMETRY in local NED from
 /// the simulator's own system id, estimator type MOCAP (external ground truth).
 inline constexpr double kTruthToClientsRate_hz = 50.0;
-/// The session's own state, to clients once a second (NAMED_VALUE_FLOAT / _INT from sysid 250),
-/// beside a HEARTBEAT whose system_status is STANDBY while paused.
-inline constexpr std::string_view kStatusRtfName = "sim_rtf";     ///< recent real-time factor
-inline constexpr std::string_view kStatusLateName = "sim_late";   ///< late ticks so far
-inline constexpr std::string_view kStatusPauseName = "sim_pause"; ///< 1 while paused
-/// For `hitl doctor` (docs/doctor.md), in the same message each second (NAMED_VALUE names hold at
-/// most 10 characters):
-inline constexpr std::string_view kStatusSpeedName = "sim_speed";     ///< FLOAT: the requested --speed (0: as fast as possible)
-inline constexpr std::string_view kStatusLockstepName = "sim_lockst"; ///< INT: 1 in lockstep (with the board or PX4 SITL)
-inline constexpr std::string_view kStatusActuatorRateName = "sim_act_hz";  ///< FLOAT: HIL_ACTUATOR_CONTROLS received, Hz of wall time, last window
-inline constexpr std::string_view kStatusActuatorFlagsName = "sim_act_fl"; ///< INT: the last one's flags (-1: none yet)
-inline constexpr std::string_view kStatusActuatorArmedName = "sim_act_ar"; ///< INT: the last one's MAV_MODE_FLAG_SAFETY_ARMED (0/1; -1: none yet)
+using ::hitl::kSimulatorComponentId;  // the session's identity and status: base/contract/session_status.h
+using ::hitl::kSimulatorSystemId;
+using ::hitl::kVioComponentId;
 
 /// Who is on the other end of the HIL link.
 enum class FlightStackLink {

@@ -4,7 +4,7 @@
 // steps work. (GPS, 30 Hz, never divides: it runs on absolute due times, within one step.)
 #pragma once
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/model/vehicle_config.h"
 
 namespace hitl::hil {

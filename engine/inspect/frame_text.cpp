@@ -1,8 +1,8 @@
 #include "engine/inspect/frame_text.h"
 
-#include "engine/mavlink/enums.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/messages.h"
 #include "engine/mavlink/field_format.h"
-#include "engine/mavlink/messages.h"
 #include "engine/telemetry/px4_mode.h"
 
 namespace hitl::inspect {

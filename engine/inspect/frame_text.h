@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "engine/mavlink/frame.h"
+#include "base/mavlink/frame.h"
 
 namespace hitl::inspect {
 

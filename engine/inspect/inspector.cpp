@@ -1,12 +1,12 @@
 #include "engine/inspect/inspector.h"
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 #include <algorithm>
 #include <chrono>
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/heartbeat.h"
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/heartbeat.h"
+#include "base/mavlink/messages.h"
 
 namespace hitl::inspect {
 namespace {

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
-#include "engine/mavlink/frame_encoder.h"
-#include "target/core/board_ports.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/message_set.h"
+#include "base/common/expected.h"
+#include "base/contract/board_ports.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/net/udp_endpoint.h"
 #include "engine/telemetry/traffic_stats.h"

@@ -1,5 +1,5 @@
+#include "base/common/bounded_read.h"
 #include "engine/mavlink/dialect_xml.h"
-#include "engine/common/bounded_read.h"
 
 #include <pugixml.hpp>
 

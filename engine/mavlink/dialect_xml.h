@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
-#include "engine/mavlink/message_set.h"
+#include "base/common/expected.h"
+#include "base/mavlink/message_set.h"
 
 namespace hitl::mavlink {
 

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "engine/mavlink/enums.h"
+#include "base/mavlink/enums.h"
 
 namespace hitl::mavlink {
 namespace {

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <string_view>
 
+#include "base/mavlink/hil_sensor_fields.h"
+#include "base/mavlink/messages.h"
 #include "engine/mavlink/enum_names.h"
-#include "engine/mavlink/hil_sensor_fields.h"
-#include "engine/mavlink/messages.h"
 
 namespace hitl::mavlink {
 namespace {

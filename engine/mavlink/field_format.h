@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "engine/mavlink/frame.h"
-#include "engine/mavlink/message_desc.h"
+#include "base/mavlink/frame.h"
+#include "base/mavlink/message_desc.h"
 
 namespace hitl::mavlink {
 

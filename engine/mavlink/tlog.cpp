@@ -3,7 +3,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "engine/mavlink/frame.h"
+#include "base/mavlink/frame.h"
 
 namespace hitl::mavlink {
 

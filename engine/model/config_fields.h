@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/model/vehicle_config.h"
 
 namespace hitl::model::config_fields {

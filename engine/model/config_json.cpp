@@ -2,7 +2,7 @@
 // written through the visitors of config_fields.h. docs/engine.md lists every key.
 #include "engine/model/config_json.h"
 
-#include "engine/common/bounded_read.h"
+#include "base/common/bounded_read.h"
 #include "engine/model/config_fields.h"
 #include "engine/model/x500_defaults.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
 

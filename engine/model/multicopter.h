@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/model/vehicle_config.h"
 #include "engine/model/vehicle_state.h"
 #include "engine/model/world_config.h"

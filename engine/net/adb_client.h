@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/net/child_process.h"
 
 namespace hitl::net {

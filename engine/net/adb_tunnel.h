@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/net/adb_client.h"
 #include "engine/net/datagram_tunnel.h"
 

@@ -13,7 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 
 extern char** environ;
 

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/net/udp_endpoint.h"
 
 namespace hitl::net {

@@ -9,7 +9,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 
 namespace hitl::net {
 namespace {

@@ -16,11 +16,11 @@
 #include <string>
 #include <thread>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
+#include "base/contract/framed_stream.h"
+#include "base/contract/tunnel_protocol.h"
 #include "engine/net/socket_address.h"
 #include "engine/net/udp_endpoint.h"
-#include "target/adb-relay/framed_stream.h"
-#include "target/adb-relay/tunnel_protocol.h"
 
 namespace hitl::net {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 
 namespace hitl::net {
 

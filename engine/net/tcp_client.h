@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/net/socket_address.h"
 
 namespace hitl::net {

@@ -1,6 +1,6 @@
 #include "engine/net/udp_endpoint.h"
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 #include "engine/net/send_error.h"
 #include <fcntl.h>
 #include <poll.h>

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "engine/mavlink/message_desc.h"
+#include "base/mavlink/message_desc.h"
 
 namespace hitl::router {
 

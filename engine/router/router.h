@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/mavlink/frame.h"
+#include "base/mavlink/frame.h"
 #include "engine/net/socket_address.h"
 #include "engine/router/dedup.h"
 

@@ -1,6 +1,16 @@
 #include "engine/telemetry/dsp_hitl_meter.h"
 
 namespace hitl::telemetry {
+
+DspHitlExpectedRates dsp_hitl_expected_rates(double mag_published_hz, double baro_published_hz) {
+  DspHitlExpectedRates r;
+  r.imu_received_hz = rate_hz_from_period_us(kHilImuPublishPeriod_us);
+  r.imu_published_hz = r.imu_received_hz;
+  r.mag_baro_received_hz = rate_hz_from_period_us(kHilMagBaroPublishPeriod_us);
+  r.mag_published_hz = mag_published_hz;
+  r.baro_published_hz = baro_published_hz;
+  return r;
+}
 namespace {
 
 std::array<uint64_t, 5> counts(const target::DspHitlCounters& c) {

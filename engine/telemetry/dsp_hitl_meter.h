@@ -11,7 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "target/core/dsp_hitl_status.h"
+#include "base/contract/data_rates.h"
+#include "base/contract/dsp_hitl_status.h"
 
 namespace hitl::telemetry {
 
@@ -25,6 +26,10 @@ struct DspHitlExpectedRates {
   double mag_published_hz = 0;
   double baro_published_hz = 0;
 };
+
+/// The spec's split rates (base/contract/data_rates.h) with sensor_mag and sensor_baro published at
+/// the given rates (the simulator's mag and baro rates; the spec's table: 50 Hz and 10 Hz).
+DspHitlExpectedRates dsp_hitl_expected_rates(double mag_published_hz, double baro_published_hz);
 
 struct DspHitlCounterView {
   const char* name = "";           ///< the status text's label

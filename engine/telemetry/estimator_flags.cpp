@@ -1,6 +1,6 @@
 #include "engine/telemetry/estimator_flags.h"
 
-#include "engine/mavlink/enums.h"
+#include "base/mavlink/enums.h"
 
 namespace hitl::telemetry {
 

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "engine/mavlink/enums.h"
+#include "base/mavlink/enums.h"
 
 namespace hitl::telemetry {
 

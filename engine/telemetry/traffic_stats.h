@@ -9,9 +9,9 @@
 #include <tuple>
 #include <vector>
 
-#include "engine/mavlink/frame.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/sequence_tracker.h"
+#include "base/mavlink/frame.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/sequence_tracker.h"
 #include "engine/telemetry/interval_meter.h"
 
 namespace hitl::telemetry {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/messages.h"
 #include "engine/telemetry/px4_mode.h"
 
 namespace hitl::telemetry {

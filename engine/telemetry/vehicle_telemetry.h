@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "engine/mavlink/frame.h"
+#include "base/mavlink/frame.h"
 
 namespace hitl::telemetry {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/text_field.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/text_field.h"
 
 namespace hitl::vehicle {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/messages.h"
 #include "engine/vehicle/params_file.h"
 
 namespace hitl::vehicle {

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <optional>
 
-#include "engine/mavlink/text_field.h"
+#include "base/mavlink/text_field.h"
 
 namespace hitl::vehicle {
 namespace {

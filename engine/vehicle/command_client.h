@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
-#include "engine/mavlink/enums.h"
+#include "base/common/expected.h"
+#include "base/mavlink/enums.h"
 #include "engine/vehicle/vehicle_link.h"
 
 namespace hitl::vehicle {

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/messages.h"
 #include "engine/vehicle/command_client.h"
 #include "engine/vehicle/patient_link.h"
 

@@ -1,7 +1,7 @@
 #include "engine/vehicle/firmware_version.h"
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/messages.h"
 
 namespace hitl::vehicle {
 

@@ -4,8 +4,8 @@
 #include <map>
 #include <optional>
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/text_field.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/text_field.h"
 #include "engine/vehicle/board_replies.h"
 
 namespace hitl::vehicle {

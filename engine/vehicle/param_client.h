@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/vehicle/params_file.h"
 #include "engine/vehicle/vehicle_link.h"
 

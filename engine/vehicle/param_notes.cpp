@@ -4,7 +4,7 @@
 
 namespace hitl::vehicle {
 
-// Generated at build time from target/px4/hitl-defaults.params (see CMakeLists.txt).
+// Generated at build time from base/contract/hitl-defaults.params (see CMakeLists.txt).
 extern const char* const kHitlDefaultParamsText;
 
 namespace {

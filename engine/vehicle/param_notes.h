@@ -1,5 +1,5 @@
 // Parameters of the spec's HITL set that a firmware does not have, and what replaces them there:
-// the "#absent NAME | FIRMWARE | WHAT REPLACES IT" lines of target/px4/hitl-defaults.params.
+// the "#absent NAME | FIRMWARE | WHAT REPLACES IT" lines of base/contract/hitl-defaults.params.
 // `hitl params check/diff/reset` report such a parameter as absent rather than wrong.
 #pragma once
 

@@ -1,5 +1,5 @@
+#include "base/common/bounded_read.h"
 #include "engine/vehicle/params_file.h"
-#include "engine/common/bounded_read.h"
 
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 namespace hitl::vehicle {
 
-// Generated at build time from target/px4/hitl-defaults.params (see CMakeLists.txt).
+// Generated at build time from base/contract/hitl-defaults.params (see CMakeLists.txt).
 extern const char* const kHitlDefaultParamsText;
 
 std::string ParamValue::to_string() const {
@@ -88,7 +88,7 @@ std::string format_params(const std::vector<Param>& params, uint8_t sysid, uint8
 
 const std::vector<Param>& hitl_default_params() {
   static const std::vector<Param> params = [] {
-    auto parsed = parse_params(kHitlDefaultParamsText, "target/px4/hitl-defaults.params");
+    auto parsed = parse_params(kHitlDefaultParamsText, "base/contract/hitl-defaults.params");
     return parsed ? parsed.value() : std::vector<Param>{};  // a parse error fails the build's test, not here
   }();
   return params;

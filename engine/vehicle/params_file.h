@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 
 namespace hitl::vehicle {
 
@@ -45,7 +45,7 @@ Expected<std::vector<Param>> load_params_file(const std::string& path);
 /// Writes QGroundControl's format with its header comment.
 std::string format_params(const std::vector<Param>& params, uint8_t sysid = 1, uint8_t compid = 1);
 
-/// The spec's HITL default set, compiled in from target/px4/hitl-defaults.params.
+/// The spec's HITL default set, compiled in from base/contract/hitl-defaults.params.
 const std::vector<Param>& hitl_default_params();
 
 /// PX4 sends and receives INT32 parameters byte-wise inside PARAM_VALUE/PARAM_SET's float field

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <thread>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 
 namespace hitl::vehicle {
 

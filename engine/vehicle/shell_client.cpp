@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/messages.h"
 #include "engine/vehicle/board_replies.h"
 
 namespace hitl::vehicle {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "engine/vehicle/vehicle_link.h"
 
 namespace hitl::vehicle {

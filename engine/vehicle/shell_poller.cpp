@@ -2,10 +2,10 @@
 
 #include <chrono>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
+#include "base/contract/dsp_hitl_status.h"
 #include "engine/vehicle/patient_link.h"
 #include "engine/vehicle/shell_client.h"
-#include "target/core/dsp_hitl_status.h"
 
 namespace hitl::vehicle {
 namespace {

@@ -1,6 +1,6 @@
 // The board's dsp_hitl counters for a dashboard, on its own thread and its own link: runs
 // `qshell dsp_hitl status` through the MAVLink shell about once a second and reads it with the
-// status text's own parser (target/core/dsp_hitl_status.h), into a DspHitlMeter. The same thread
+// status text's own parser (base/contract/dsp_hitl_status.h), into a DspHitlMeter. The same thread
 // runs one-shot shell commands an operator asks for, so two conversations never interleave on the
 // shell; their output goes to a callback.
 #pragma once

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "engine/common/clock.h"
-#include "engine/mavlink/messages.h"
-#include "engine/mavlink/text_field.h"
+#include "base/common/clock.h"
+#include "base/mavlink/messages.h"
+#include "base/mavlink/text_field.h"
 #include "engine/vehicle/patient_link.h"
 
 namespace hitl::vehicle {

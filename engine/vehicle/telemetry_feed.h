@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "engine/mavlink/enums.h"
+#include "base/mavlink/enums.h"
 #include "engine/telemetry/estimate_error.h"
 #include "engine/telemetry/vehicle_telemetry.h"
 #include "engine/vehicle/vehicle_link.h"

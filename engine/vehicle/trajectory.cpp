@@ -1,5 +1,5 @@
+#include "base/common/bounded_read.h"
 #include "engine/vehicle/trajectory.h"
-#include "engine/common/bounded_read.h"
 
 #include <nlohmann/json.hpp>
 

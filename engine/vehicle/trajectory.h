@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 
 namespace hitl::vehicle {
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/mavlink/frame.h"
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/frame.h"
+#include "base/mavlink/messages.h"
 #include "engine/vehicle/trajectory.h"
 
 namespace hitl::vehicle {

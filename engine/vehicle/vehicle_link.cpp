@@ -1,6 +1,6 @@
 #include "engine/vehicle/vehicle_link.h"
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -8,8 +8,8 @@
 #include <cerrno>
 #include <chrono>
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/heartbeat.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/heartbeat.h"
 
 namespace hitl::vehicle {
 namespace {

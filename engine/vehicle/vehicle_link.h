@@ -16,17 +16,17 @@
 #include <optional>
 #include <string>
 
-#include "engine/common/expected.h"
-#include "engine/mavlink/frame_encoder.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/messages.h"
+#include "base/common/expected.h"
+#include "base/contract/board_ports.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/messages.h"
 #include "engine/net/tcp_client.h"
 #include "engine/net/udp_endpoint.h"
-#include "target/core/board_ports.h"
 
 namespace hitl::vehicle {
 
-using ::hitl::kBoardGcsPort;     // the port table: target/core/board_ports.h
+using ::hitl::kBoardGcsPort;     // the port table: base/contract/board_ports.h
 using ::hitl::kDirectLocalPort;  // direct commands always talk from here
 
 struct LinkOptions {

@@ -10,7 +10,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 
 namespace hitl::adb {
 namespace {

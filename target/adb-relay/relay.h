@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "target/adb-relay/framed_stream.h"
-#include "target/adb-relay/tunnel_protocol.h"
+#include "base/contract/framed_stream.h"
+#include "base/contract/tunnel_protocol.h"
 
 namespace hitl::adb {
 

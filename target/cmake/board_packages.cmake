@@ -1,6 +1,6 @@
 # target/ configured on its own: the board packages voxl-hitl-vio-server and voxl-hitl-px4-scripts
 # (.deb, arm64 with the toolchain file aarch64-linux-gnu.cmake beside this one). Builds only what
-# they need: engine/mavlink's codec, target/vio-server, target/px4/scripts and target/adb-relay.
+# they need: base/ (the codec and the contract), target/vio-server, target/px4/scripts and target/adb-relay.
 #   cmake -S target -B /tmp/board -DCMAKE_TOOLCHAIN_FILE=target/cmake/aarch64-linux-gnu.cmake
 #   cmake --build /tmp/board -j2 && (cd /tmp/board && cpack -G DEB)
 set(HITL_REPO_ROOT ${CMAKE_CURRENT_SOURCE_DIR}/..)
@@ -33,8 +33,10 @@ file(CREATE_LINK ${HITL_NLOHMANN_JSON_DIR}/nlohmann ${HITL_HEADER_ONLY_INCLUDE}/
 add_library(nlohmann_json::nlohmann_json INTERFACE IMPORTED)
 set_target_properties(nlohmann_json::nlohmann_json PROPERTIES INTERFACE_INCLUDE_DIRECTORIES ${HITL_HEADER_ONLY_INCLUDE})
 
-set(HITL_MAVLINK_CODEC_ONLY ON)
-add_subdirectory(${HITL_REPO_ROOT}/engine/mavlink ${CMAKE_BINARY_DIR}/engine/mavlink)
+# base/ (the codec, the contract) as a library, as the host build uses it.
+set(HITL_SOURCE_ROOT ${HITL_REPO_ROOT})
+include(${HITL_REPO_ROOT}/cmake/layers.cmake)
+add_subdirectory(${HITL_REPO_ROOT}/base ${CMAKE_BINARY_DIR}/base)
 add_subdirectory(vio-server)
 add_subdirectory(px4/scripts)
 # hitl-adb-relay (the board end of `hitl sim --adb`) ships in voxl-hitl-px4-scripts too.

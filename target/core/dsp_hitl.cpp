@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "target/core/device_ids.h"
-#include "target/core/dsp_hitl_status.h"
+#include "base/contract/device_ids.h"
+#include "base/contract/dsp_hitl_status.h"
 
 namespace hitl::target {
 

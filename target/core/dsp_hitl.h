@@ -21,21 +21,11 @@
 #include <optional>
 #include <string>
 
+#include "base/contract/dsp_hitl_status.h"
 #include "target/core/hil_uorb_messages.h"
 #include "target/core/px4_topics.h"
 
 namespace hitl::target {
-
-/// The counters of `dsp_hitl status`, plus the reasons a received sample was not published.
-struct DspHitlCounters {
-  uint64_t hil_imu_received = 0;       ///< "HIL sensor_imu received"
-  uint64_t imu_published = 0;          ///< "IMU updates published" (accel + gyro pairs)
-  uint64_t hil_mag_baro_received = 0;  ///< "HIL sensor_mag_baro received"
-  uint64_t mag_published = 0;          ///< "MAG updates published"
-  uint64_t baro_published = 0;         ///< "BARO updates published"
-  uint64_t not_finite = 0;             ///< samples dropped for NaN/Inf values
-  uint64_t time_not_advanced = 0;      ///< samples dropped because now_us did not advance
-};
 
 /// What on_imu publishes: one accel and one gyro sample, same timestamps.
 struct DspImuSamples {
@@ -47,13 +37,6 @@ struct DspImuSamples {
 struct DspMagBaroSamples {
   std::optional<SensorMag> mag;
   std::optional<SensorBaro> baro;
-};
-
-/// What status shows as "Current accel/gyro" (latest received, published or not).
-struct DspHitlCurrent {
-  bool imu_received = false;           ///< false before the first hil_sensor_imu
-  float accel_FRD_m_s2[3] = {};
-  float gyro_FRD_rad_s[3] = {};
 };
 
 class DspHitl {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "target/core/device_ids.h"
+#include "base/contract/device_ids.h"
 
 namespace hitl::target {
 

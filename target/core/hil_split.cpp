@@ -5,9 +5,11 @@
 #include <initializer_list>
 #include <limits>
 
-#include "target/core/hil_sensor_fields.h"
+#include "base/mavlink/hil_sensor_fields.h"
 
 namespace hitl::target {
+
+namespace hil_sensor = mavlink::hil_sensor;
 
 namespace {
 

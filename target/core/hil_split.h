@@ -36,8 +36,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "base/contract/data_rates.h"
 #include "target/core/hil_inputs.h"
-#include "target/core/hil_spec.h"
 #include "target/core/hil_uorb_messages.h"
 #include "target/core/periodic_schedule.h"
 #include "target/core/px4_topics.h"
@@ -49,9 +49,9 @@ namespace hitl::target {
 constexpr float pressure_Pa_from_hPa(float pressure_hPa) { return pressure_hPa * 100.0F; }
 
 struct HilSplitConfig {
-  uint64_t imu_period_us = kHilImuPeriod_us;  ///< HIL_IMU_PUBLISH_INTERVAL_US (250 Hz)
+  uint64_t imu_period_us = kHilImuPublishPeriod_us;
   uint64_t imu_phase_us = 2000;        ///< first IMU publication this long after the stream starts
-  uint64_t mag_baro_period_us = 10000; ///< 100 Hz
+  uint64_t mag_baro_period_us = kHilMagBaroPublishPeriod_us;
   uint64_t battery_period_us = kSimBatteryPeriod_us;
   /// A stream stops when its data are older than this (25 IMU periods: far below the ~100 equal
   /// values after which PX4's sensor validator calls a sensor stale).

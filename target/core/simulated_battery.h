@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "base/contract/data_rates.h"
 #include "target/core/px4_topics.h"
 
 namespace hitl::target {
@@ -13,7 +14,7 @@ inline constexpr float kSimBatteryCurrent_A = 5.0F;
 inline constexpr float kSimBatteryRemaining_ratio = 1.0F;
 inline constexpr uint8_t kSimBatteryCellCount = 4;
 inline constexpr uint8_t kSimBatteryId = 1;  ///< battery_status ids are 1-based
-inline constexpr uint64_t kSimBatteryPeriod_us = 100000;  ///< 10 Hz
+using ::hitl::kSimBatteryPeriod_us;  // base/contract/data_rates.h
 
 /// The simulated battery's battery_status at `now_us`: connected, no warning, nothing discharged,
 /// scale 1, time remaining and temperature unknown (NaN).

@@ -10,9 +10,9 @@
 #include <memory>
 #include <string>
 
-#include "engine/common/expected.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/messages.h"
+#include "base/common/expected.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/messages.h"
 
 namespace hitl::vio {
 

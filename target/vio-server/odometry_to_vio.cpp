@@ -6,7 +6,7 @@
 #include <cstring>
 #include <string>
 
-#include "engine/mavlink/enums.h"
+#include "base/mavlink/enums.h"
 
 namespace hitl::vio {
 namespace {

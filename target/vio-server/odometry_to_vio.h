@@ -29,8 +29,8 @@
 
 #include <cstdint>
 
-#include "engine/common/expected.h"
-#include "engine/mavlink/messages.h"
+#include "base/common/expected.h"
+#include "base/mavlink/messages.h"
 #include "target/vio-server/vio_data.h"
 
 namespace hitl::vio {

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "target/vio-server/odometry_receiver.h"
 #include "target/vio-server/pipe_server.h"
 

@@ -11,7 +11,7 @@
 #include <cstring>
 #include <vector>
 
-#include "engine/common/clock.h"
+#include "base/common/clock.h"
 #include "target/vio-server/odometry_to_vio.h"
 #include "target/vio-server/raw_fifo_pipe.h"
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "engine/common/expected.h"
+#include "base/common/expected.h"
 #include "target/vio-server/odometry_receiver.h"
 #include "target/vio-server/pipe_server.h"
 #include "target/vio-server/server_status.h"

@@ -1,5 +1,5 @@
+#include "base/common/bounded_read.h"
 #include "target/vio-server/vio_server_config.h"
-#include "engine/common/bounded_read.h"
 
 #include <arpa/inet.h>
 

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "engine/mavlink/enums.h"
-#include "target/core/hil_spec.h"
-#include "target/emulator/hil_input.h"
-#include "target/emulator/telemetry_messages.h"
+#include "base/contract/data_rates.h"
+#include "base/mavlink/enums.h"
+#include "emulator/hil_input.h"
+#include "emulator/telemetry_messages.h"
 
 namespace hitl::target {
 namespace {
@@ -151,10 +151,10 @@ TEST(LockstepClock, FollowsSensorTimeOneImuPeriodAheadFromWhereTheWallClockWas) 
   // The first HIL_SENSOR arrives 2.5 s into the board's life, stamped 1 s.
   uint64_t now = clock.on_hil_sensor(1000000, 2500000);
   EXPECT_TRUE(clock.started());
-  EXPECT_EQ(now, 2500000 + kHilImuPeriod_us);
+  EXPECT_EQ(now, 2500000 + kHilImuPublishPeriod_us);
   EXPECT_EQ(clock.last_sensor_time_us(), 1000000u);
   now = clock.on_hil_sensor(1000000 + 4000, now);
-  EXPECT_EQ(now, 2500000 + 4000 + kHilImuPeriod_us);
+  EXPECT_EQ(now, 2500000 + 4000 + kHilImuPublishPeriod_us);
   // A repeated stamp never moves the clock back.
   EXPECT_EQ(clock.on_hil_sensor(1000000 + 4000, now + 100), now + 100);
   EXPECT_FALSE(clock.take_new_session_text());
@@ -168,12 +168,12 @@ TEST(LockstepClock, ATimeThatGoesBackIsANewSimulatorSessionAndTheBoardCarriesOn)
   const uint64_t before = now;
   now = clock.on_hil_sensor(8000, now);  // a new simulator, starting again near 0
   EXPECT_EQ(clock.restarts(), 1u);
-  EXPECT_EQ(now, before + kHilImuPeriod_us);  // re-anchored where the board was
+  EXPECT_EQ(now, before + kHilImuPublishPeriod_us);  // re-anchored where the board was
   const auto text = clock.take_new_session_text();
   ASSERT_TRUE(text);
   EXPECT_NE(text->find("went back from 400 ms to 8 ms"), std::string::npos) << *text;
   EXPECT_FALSE(clock.take_new_session_text());  // said once
-  EXPECT_EQ(clock.on_hil_sensor(12000, now), before + 4000 + kHilImuPeriod_us);
+  EXPECT_EQ(clock.on_hil_sensor(12000, now), before + 4000 + kHilImuPublishPeriod_us);
 }
 
 }  // namespace

@@ -10,9 +10,9 @@
 #include <csignal>
 #include <thread>
 
-#include "engine/mavlink/enums.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/messages.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/messages.h"
 #include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
 

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "target/emulator/param_store.h"
-#include "target/emulator/shell.h"
+#include "emulator/param_store.h"
+#include "emulator/shell.h"
 
 namespace hitl::target {
 namespace {

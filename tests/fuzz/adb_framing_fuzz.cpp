@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "target/adb-relay/datagram_framing.h"
+#include "base/contract/datagram_framing.h"
 #include "tests/fuzz/fuzz_check.h"
 
 namespace {

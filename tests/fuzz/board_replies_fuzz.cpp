@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/message_set.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
 #include "engine/vehicle/board_replies.h"
 #include "tests/fuzz/fuzz_check.h"
 

@@ -17,12 +17,12 @@
 #include <span>
 #include <string>
 
-#include "engine/mavlink/crc.h"
+#include "base/mavlink/crc.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
+#include "base/mavlink/messages.h"
+#include "base/mavlink/typed_codec.h"
 #include "engine/mavlink/field_format.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/message_set.h"
-#include "engine/mavlink/messages.h"
-#include "engine/mavlink/typed_codec.h"
 #include "tests/fuzz/fuzz_key.h"
 
 namespace {

@@ -2,7 +2,7 @@
 // frames in the seed corpus verify and the fuzzer reaches the accept path of signing.
 #pragma once
 
-#include "engine/mavlink/signing.h"
+#include "base/mavlink/signing.h"
 
 namespace hitl::fuzz {
 

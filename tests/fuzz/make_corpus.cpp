@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/mavlink/frame_encoder.h"
-#include "engine/mavlink/messages.h"
-#include "engine/mavlink/signing.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/messages.h"
+#include "base/mavlink/signing.h"
 #include "tests/fuzz/fuzz_key.h"
 
 namespace {

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <string>
 
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/message_set.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/telemetry/traffic_json.h"
 #include "engine/telemetry/traffic_stats.h"

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/message_set.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
 #include "target/vio-server/odometry_to_vio.h"
 #include "target/vio-server/vio_server_config.h"
 #include "tests/fuzz/fuzz_check.h"

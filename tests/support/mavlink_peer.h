@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include "engine/mavlink/frame_encoder.h"
-#include "engine/mavlink/frame_parser.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
 #include "engine/net/udp_endpoint.h"
 
 namespace hitl::test {

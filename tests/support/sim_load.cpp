@@ -12,10 +12,10 @@
 #include <cmath>
 #include <thread>
 
-#include "engine/common/clock.h"
-#include "engine/mavlink/frame_encoder.h"
-#include "engine/mavlink/frame_parser.h"
-#include "engine/mavlink/messages.h"
+#include "base/common/clock.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/messages.h"
 #include "engine/net/udp_endpoint.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"

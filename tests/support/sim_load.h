@@ -1,7 +1,7 @@
 // Load against a real `hitl sim` (loopback only): many clients on its client port, each sending a
 // HEARTBEAT every few seconds, and a flood of datagrams (valid frames and junk) to the client port
 // from one of those clients and to the HIL port from a stranger; meanwhile a receiver plays the
-// board and times every HIL_SENSOR. Bounded in count and time. Used by tests/sim/sim_load_test
+// board and times every HIL_SENSOR. Bounded in count and time. Used by tests/cli/sim_load_test
 // (generous floors) and bench/sim/sim_load_bench (the strict figure).
 #pragma once
 

@@ -1,5 +1,5 @@
 # Configures PX4 with target/px4 as its external modules: the second step of px4_hitl
-# (px4_hitl_target.cmake), and what tests/target/px4_standin_check.cmake runs against a stand-in.
+# (px4_hitl_target.cmake), and what tests/target/px4/px4_standin_check.cmake runs against a stand-in.
 #
 #   cmake -DPX4_DIR=DIR -DPX4_BUILD_DIR=DIR -DPX4_CONFIG=NAME -DEXTERNAL_MODULES_LOCATION=<hitl>/target/px4
 #         [-DHIL_SPLIT_ANY_BOARD=ON] [-DPX4_PYTHON_EXECUTABLE=P] [-DGENERATOR=G]

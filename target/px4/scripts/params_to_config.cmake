@@ -1,4 +1,4 @@
-# Writes voxl-px4-hitl-set-default-parameters.config from target/px4/hitl-defaults.params, the one
+# Writes voxl-px4-hitl-set-default-parameters.config from base/contract/hitl-defaults.params, the one
 # copy of the spec's HITL parameter set (`hitl params reset` and `hitl target` read the same file):
 # one `param set NAME VALUE` line per parameter, in the file's order, each value as written there.
 # The rules are params_file.cpp's: "Vehicle-Id Component-Id Name Value Type" separated by blanks,

@@ -21,7 +21,7 @@ three MAVLink instances, dsp_hitl, sensors in HIL mode, the multicopter flight s
 Options:
   --px4-build DIR         PX4 build directory (default: \$PX4_DIR/build/px4_sitl_nolockstep)
   --workdir DIR           PX4's working directory: parameters, dataman (default: a new temporary one)
-  --params FILE           HITL parameter file (default: $target_px4/hitl-defaults.params)
+  --params FILE           HITL parameter file (default: base/contract/hitl-defaults.params)
   --hil-port N            primary instance, the HIL link (default 14560); --hil-remote-port (14550)
   --onboard-port N        secondary instance (default 14556); --onboard-remote-port (14557)
   --gcs-port N            tertiary instance (default 14558); --gcs-remote-port (14559)
@@ -45,7 +45,7 @@ port() { # name value
 
 px4_build="${PX4_DIR:+$PX4_DIR/build/px4_sitl_nolockstep}"
 workdir=""
-params="$target_px4/hitl-defaults.params"
+params="$(dirname "$(dirname "$target_px4")")/base/contract/hitl-defaults.params"
 hil_port=14560 hil_remote_port=14550
 onboard_port=14556 onboard_remote_port=14557
 gcs_port=14558 gcs_remote_port=14559

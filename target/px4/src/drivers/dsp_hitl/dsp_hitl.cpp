@@ -11,7 +11,7 @@
 #include <uORB/topics/hil_sensor_imu.h>
 #include <uORB/topics/hil_sensor_mag_baro.h>
 
-#include "target/core/dsp_hitl_status.h"
+#include "base/contract/dsp_hitl_status.h"
 
 namespace
 {

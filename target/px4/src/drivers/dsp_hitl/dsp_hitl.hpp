@@ -45,7 +45,7 @@ public:
 	/** @see ModuleBase::run */
 	void run() override;
 
-	/** `dsp_hitl status`: the spec's text (target/core/dsp_hitl_status.h). */
+	/** `dsp_hitl status`: the spec's text (base/contract/dsp_hitl_status.h). */
 	int print_status() override;
 
 private:
