@@ -15,6 +15,7 @@
 #include "engine/hil/session.h"
 #include "engine/hil/stack_link.h"
 #include "engine/hil/traffic.h"
+#include "engine/mavlink/enums.h"
 #include "engine/mavlink/frame_encoder.h"
 #include "engine/mavlink/message_set.h"
 #include "engine/model/multicopter.h"
