@@ -26,7 +26,11 @@ struct Traffic {
     c.count += n;
     c.window += n;
   }
-  void count_received(uint32_t id) { count_sent_to(received, id); }
+  void count_received(uint32_t id) {
+    auto& c = received[id];
+    ++c.count;
+    ++c.window;
+  }
   void count_failed(uint64_t n, const std::string& why) {
     send_errors += n;
     last_send_error = why;
@@ -43,13 +47,6 @@ struct Traffic {
         c.rate_hz = static_cast<double>(c.window) / window_s;
         c.window = 0;
       }
-  }
-
- private:
-  static void count_sent_to(std::map<uint32_t, StreamCounter>& m, uint32_t id) {
-    auto& c = m[id];
-    ++c.count;
-    ++c.window;
   }
 };
 
