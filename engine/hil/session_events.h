@@ -1,0 +1,22 @@
+// What the session and its parts say while they run: events in words with a severity, to an
+// observer (the CLI prints them, the dashboard logs them). The engine never prints.
+#pragma once
+
+#include <string>
+
+namespace hitl::hil {
+
+enum class Severity { Info, Warning, Error };
+
+struct SessionEvent {
+  Severity severity = Severity::Info;
+  std::string text;
+};
+
+class EventSink {
+ public:
+  virtual ~EventSink() = default;
+  virtual void on_event(const SessionEvent& /*event*/) {}
+};
+
+}  // namespace hitl::hil
