@@ -211,14 +211,15 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     log_error(cmd, "--world: " + world.error().message);
     return kExitUsage;
   }
+  std::optional<vehicle::Trajectory> for_f_key;  // with the dashboard the trajectory waits for the f key
   if (!opt.trajectory_file.empty()) {
     auto trajectory = vehicle::Trajectory::load(opt.trajectory_file);
     if (!trajectory) {
       log_error(cmd, "-t: " + trajectory.error().message);
       return kExitUsage;
     }
-    // With the dashboard the trajectory waits for the f key (flown from the host through the client port).
-    if (!opt.tui) cfg.trajectory = std::move(trajectory.value());
+    if (opt.tui) for_f_key = std::move(trajectory.value());
+    else cfg.trajectory = std::move(trajectory.value());
   }
   cfg.vehicle = *vehicle;
   cfg.world = *world;
@@ -281,7 +282,8 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   if (opt.tui) {
     tui::SimDashboardConfig dc;
     dc.trajectory_file = opt.trajectory_file;
-    dc.trajectory_mode = vehicle::to_string(opt.session.trajectory_mode);
+    dc.trajectory = std::move(for_f_key);
+    dc.trajectory_mode = opt.session.trajectory_mode;
     end = run_session_with_dashboard(global, cmd, **session, opt.session, dc);
   } else {
     SimPrinter printer(global);

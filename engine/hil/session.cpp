@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "engine/frames/frames.h"
 #include "engine/hil/actuator_input.h"
 #include "engine/hil/data_paths.h"
 #include "engine/hil/pacer.h"
@@ -30,7 +31,7 @@
 #include "engine/net/udp_endpoint.h"
 #include "engine/sensors/sensor_suite.h"
 #include "engine/telemetry/health.h"
-#include "engine/vehicle/trajectory_pilot.h"
+#include "engine/vehicle/trajectory_flight.h"
 
 namespace hitl::hil {
 namespace {
@@ -74,9 +75,8 @@ struct Session::Impl {
   router::Router router;  ///< board <-> clients, the same code path as hitl bridge (no dedup: one path)
   router::LinkId board_link = 0, clients_link = 0;
   std::optional<mavlink::TlogWriter> recorder;
-  std::optional<vehicle::TrajectoryPilot> pilot;
+  std::optional<vehicle::TrajectoryFlight> pilot;
   mavlink::FrameEncoder pilot_encoder{mavlink::kGcsSystemId, mavlink::kCompIdMissionPlanner};  ///< a GCS's identity
-  Eigen::Vector3d pilot_origin_ENU_m = Eigen::Vector3d::Zero();
 
   ActuatorInput actuators{0.5};
   model::TouchdownMonitor touchdowns;
@@ -542,16 +542,13 @@ struct Session::Impl {
     return Ok{};
   }
 
-  /// -t: the trajectory pilot flies on ground truth, as the spec's trajectory_rc plugin does.
+  /// -t: the trajectory flight flies on ground truth, as the spec's trajectory_rc plugin does, and is
+  /// scored on it.
   void fly_pilot(const model::VehicleState& state, Observer& observer) {
-    vehicle::PilotPose pose;
-    const Eigen::Vector3d p = state.p_ENU_m - pilot_origin_ENU_m;
-    pose.p_ENU_m = {p.x(), p.y(), p.z()};
-    pose.v_ENU_m_s = {state.v_ENU_m_s.x(), state.v_ENU_m_s.y(), state.v_ENU_m_s.z()};
-    const Eigen::Matrix3d R = state.q_FLU_to_ENU.toRotationMatrix();
-    pose.yaw_ENU_rad = std::atan2(R(1, 0), R(0, 0));
-    auto out = pilot->step(time_offset_s + state.time_s, pose);
-    pilot->observe_truth(time_offset_s + state.time_s, pose);  // the session's pilot flies on truth itself
+    const vehicle::PilotPose truth{{state.p_ENU_m.x(), state.p_ENU_m.y(), state.p_ENU_m.z()},
+                                   {state.v_ENU_m_s.x(), state.v_ENU_m_s.y(), state.v_ENU_m_s.z()},
+                                   frames::yaw_ENU_rad(state.q_FLU_to_ENU)};
+    auto out = pilot->step(time_offset_s + state.time_s, truth, truth);
     mavlink::FrameBuffer buf;
     for (const auto& c : out.commands) forward_to_stack({buf.data(), pilot_encoder.encode(c, buf)});
     if (out.rc) forward_to_stack({buf.data(), pilot_encoder.encode(*out.rc, buf)});
@@ -761,7 +758,6 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     pc.home_alt_msl_m = config.world.home.alt_m;
     pc.mode = config.trajectory_mode;
     impl->pilot.emplace(*config.trajectory, pc);
-    impl->pilot_origin_ENU_m = impl->model->state().p_ENU_m;
   }
   if (!config.record_path.empty()) {
     auto w = mavlink::TlogWriter::open(config.record_path);
