@@ -10,6 +10,7 @@
 #include "engine/mavlink/enums.h"
 #include "engine/vehicle/action.h"
 #include "engine/vehicle/command_worker.h"
+#include "tests/support/board_link.h"
 #include "tests/support/scripted_board.h"
 
 namespace hitl::vehicle {
@@ -17,16 +18,7 @@ namespace {
 
 namespace msg = mavlink::msg;
 using test::ScriptedBoard;
-
-std::unique_ptr<VehicleLink> connect_to(uint16_t port) {
-  LinkOptions o;
-  o.connect = "udp:127.0.0.1:" + std::to_string(port);
-  o.local_port = 0;
-  o.timeout_s = 3;
-  auto link = VehicleLink::connect(o);
-  EXPECT_TRUE(link.ok()) << link.error().message;
-  return std::move(link.value());
-}
+using test::connect_to;
 
 void answer(test::MavlinkPeer& peer, uint16_t command, mavlink::MavResult result, const char* statustext = nullptr) {
   msg::CommandAck ack;

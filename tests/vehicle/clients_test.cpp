@@ -14,6 +14,7 @@
 #include "engine/vehicle/shell_poller.h"
 #include "target/core/dsp_hitl_status.h"
 #include "tests/support/mavlink_peer.h"
+#include "tests/support/board_link.h"
 #include "tests/support/scripted_board.h"
 
 namespace hitl::vehicle {
@@ -23,16 +24,7 @@ namespace msg = mavlink::msg;
 using namespace std::chrono_literals;
 
 using test::ScriptedBoard;
-
-std::unique_ptr<VehicleLink> connect_to(uint16_t port) {
-  LinkOptions o;
-  o.connect = "udp:127.0.0.1:" + std::to_string(port);
-  o.local_port = 0;
-  o.timeout_s = 3;
-  auto link = VehicleLink::connect(o);
-  EXPECT_TRUE(link.ok()) << link.error().message;
-  return std::move(link.value());
-}
+using test::connect_to;
 
 TEST(CommandClient, RetransmitsAfterALossAndWaitsThroughInProgress) {
   std::atomic<int> seen{0};

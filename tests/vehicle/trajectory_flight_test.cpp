@@ -16,6 +16,7 @@
 #include "engine/mavlink/message_set.h"
 #include "engine/vehicle/action.h"
 #include "engine/vehicle/trajectory_flight.h"
+#include "tests/support/board_link.h"
 #include "tests/support/scripted_board.h"
 
 namespace hitl::vehicle {
@@ -24,6 +25,7 @@ namespace {
 namespace msg = mavlink::msg;
 using namespace std::chrono_literals;
 using test::ScriptedBoard;
+using test::connect_to;
 
 /// Hover 2 m above the start, facing east (ENU yaw 0), for 1 s.
 Trajectory hover() {
@@ -162,17 +164,6 @@ class FlyingBoard {
   mavlink::FrameEncoder truth_encoder_{250, 1};
   ScriptedBoard board_;  ///< last: its thread starts once the rest is built
 };
-
-std::unique_ptr<VehicleLink> connect_to(uint16_t port, const std::atomic<bool>* stop = nullptr) {
-  LinkOptions o;
-  o.connect = "udp:127.0.0.1:" + std::to_string(port);
-  o.local_port = 0;
-  o.timeout_s = 3;
-  o.stop = stop;
-  auto link = VehicleLink::connect(o);
-  EXPECT_TRUE(link.ok()) << link.error().message;
-  return std::move(link.value());
-}
 
 TEST(FlyTrajectory, FliesTheWholeSequenceOnTheBoardsEstimateInEnu) {
   FlyingBoard board;
