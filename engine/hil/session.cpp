@@ -47,7 +47,6 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     pc.home_alt_msl_m = config.world.home.alt_m;
     pc.mode = config.trajectory_mode;
     s.pilot.emplace(*config.trajectory, pc);
-    s.pilot_origin_ENU_m = s.model->state().p_ENU_m;
   }
   if (!config.record_path.empty()) {
     auto w = mavlink::TlogWriter::open(config.record_path);

@@ -21,7 +21,7 @@
 #include "engine/model/multicopter.h"
 #include "engine/model/touchdown_monitor.h"
 #include "engine/sensors/sensor_suite.h"
-#include "engine/vehicle/trajectory_pilot.h"
+#include "engine/vehicle/trajectory_flight.h"
 
 namespace hitl::hil {
 
@@ -38,9 +38,8 @@ struct Session::Impl {
   std::unique_ptr<ClientServices> services;  ///< client port, status, truth, VIO
   std::optional<Pacer> pacer;
   std::optional<DataPaths> paths;
-  std::optional<vehicle::TrajectoryPilot> pilot;
+  std::optional<vehicle::TrajectoryFlight> pilot;
   mavlink::FrameEncoder pilot_encoder{mavlink::kGcsSystemId, mavlink::kCompIdMissionPlanner};  ///< a GCS's identity
-  Eigen::Vector3d pilot_origin_ENU_m = Eigen::Vector3d::Zero();
 
   // Operator controls (the dashboard): requests from other threads, taken at the next step.
   std::atomic<bool> pause_wanted{false};

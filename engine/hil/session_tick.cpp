@@ -7,6 +7,7 @@
 #include "base/common/clock.h"
 #include "engine/hil/sensor_messages.h"
 #include "engine/hil/session_impl.h"
+#include "engine/frames/frames.h"
 #include "engine/hil/snapshot_builder.h"
 #include "base/mavlink/enums.h"
 #include "base/mavlink/wire_units.h"
@@ -81,14 +82,12 @@ void Session::Impl::send_messages(const sensors::SensorFrame& frame, uint64_t t_
 }
 
 void Session::Impl::fly_pilot(const model::VehicleState& state, EventSink& events) {
-  vehicle::PilotPose pose;
-  const Eigen::Vector3d p = state.p_ENU_m - pilot_origin_ENU_m;
-  pose.p_ENU_m = {p.x(), p.y(), p.z()};
-  pose.v_ENU_m_s = {state.v_ENU_m_s.x(), state.v_ENU_m_s.y(), state.v_ENU_m_s.z()};
-  const Eigen::Matrix3d R = state.q_FLU_to_ENU.toRotationMatrix();
-  pose.yaw_ENU_rad = std::atan2(R(1, 0), R(0, 0));
-  auto out = pilot->step(time_offset_s + state.time_s, pose);
-  pilot->observe_truth(time_offset_s + state.time_s, pose);  // the session's pilot flies on truth itself
+  // -t: the trajectory flight flies on ground truth, as the spec's trajectory_rc plugin does, and is
+  // scored on it.
+  const vehicle::PilotPose truth{{state.p_ENU_m.x(), state.p_ENU_m.y(), state.p_ENU_m.z()},
+                                 {state.v_ENU_m_s.x(), state.v_ENU_m_s.y(), state.v_ENU_m_s.z()},
+                                 frames::yaw_ENU_rad(state.q_FLU_to_ENU)};
+  auto out = pilot->step(time_offset_s + state.time_s, truth, truth);
   mavlink::FrameBuffer buf;
   for (const auto& c : out.commands) stack->forward({buf.data(), pilot_encoder.encode(c, buf)});
   if (out.rc) stack->forward({buf.data(), pilot_encoder.encode(*out.rc, buf)});

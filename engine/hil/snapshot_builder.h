@@ -12,7 +12,7 @@
 #include "engine/model/touchdown_monitor.h"
 #include "engine/model/vehicle_state.h"
 #include "engine/sensors/sensor_suite.h"
-#include "engine/vehicle/trajectory_pilot.h"
+#include "engine/vehicle/trajectory_flight.h"
 
 namespace hitl::hil {
 
@@ -31,7 +31,7 @@ struct SnapshotSources {
   const PacerStats& pacer;
   const sensors::SensorSuite& sensors;
   const model::TouchdownMonitor& touchdowns;
-  const vehicle::TrajectoryPilot* pilot = nullptr;
+  const vehicle::TrajectoryFlight* pilot = nullptr;
   std::vector<DataPathStats> paths;
   bool paused = false;
   uint64_t resets = 0;
