@@ -1,15 +1,12 @@
-// hitl arm / hitl disarm: COMPONENT_ARM_DISARM with its ACK, the board's reasons in words, and
-// success only once the board's HEARTBEAT shows the new state.
-#include <algorithm>
+// hitl arm / hitl disarm: the action API's arm / disarm (COMPONENT_ARM_DISARM with its ACK, success
+// only once the board's HEARTBEAT shows the new state); the board's reasons in words, the exit code.
 #include <cstdio>
 #include <iostream>
 
-#include "base/common/clock.h"
-#include "base/mavlink/enums.h"
 #include "cli/commands.h"
 #include "cli/link_options.h"
 #include "cli/number_check.h"
-#include "engine/vehicle/command_client.h"
+#include "engine/vehicle/action.h"
 
 namespace hitl::cli {
 namespace {
@@ -34,45 +31,30 @@ int run_arm(const GlobalOptions& g, const ArmOptions& o, bool arm) {
     return kExitFailed;
   }
   log_info(g, std::string("hitl ") + cmd + ": autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
-  vehicle::CommandClient client(**link);
-  const double give_up_s = monotonic_s() + o.wait_s;
-  Expected<vehicle::CommandOutcome> outcome = Error{"not sent"};
-  for (;;) {
-    outcome = client.send(mavlink::cmd::kComponentArmDisarm,
-                          {arm ? 1.0f : 0.0f, o.force ? mavlink::cmd::kArmDisarmForceMagic : 0.0f, 0, 0, 0, 0, 0});
-    if (!outcome) {
-      log_error(cmd, outcome.error().message);
-      return kExitFailed;
-    }
-    const double left_s = give_up_s - monotonic_s();
-    if (outcome->accepted() || !outcome->pending() || left_s <= 0) break;
-    // Still converging: say what it waits for, let a second pass (the link keeps its HEARTBEAT), retry.
-    log_info(g, waiting_text(cmd, *outcome, left_s));
-    (*link)->wait(std::min(1.0, left_s), [](const mavlink::Frame&) { return false; });
+  vehicle::Action action(**link);
+  const auto waiting = [&](const vehicle::CommandOutcome& refusal, double left_s) { log_info(g, waiting_text(cmd, refusal, left_s)); };
+  const auto outcome = arm ? action.arm(o.force, o.wait_s, waiting) : action.disarm(o.force, o.wait_s, waiting);
+  if (!outcome.command) {  // no COMMAND_ACK at all
+    log_error(cmd, outcome.error);
+    return kExitFailed;
   }
-  bool confirmed = false;
-  if (outcome->accepted()) {
-    confirmed = (*link)->wait(3.0, [&](const mavlink::Frame& f) {
-      if (!f.is<mavlink::msg::Heartbeat>()) return false;
-      return ((f.as<mavlink::msg::Heartbeat>().base_mode & mavlink::mode_flag::kSafetyArmed) != 0) == arm;
-    });
-  }
+  const vehicle::CommandOutcome& answer = *outcome.command;
   const std::string verb = arm ? "Arming" : "Disarming";
   if (g.json) {
     print_json_line({{"type", "summary"},
                      {"command", cmd},
-                     {"ok", confirmed},
-                     {"result", vehicle::to_string(outcome->result)},
-                     {"reason", outcome->accepted() ? "" : (outcome->statustexts.empty() ? "" : outcome->statustexts.back())},
-                     {"statustexts", outcome->statustexts}});
-  } else if (confirmed) {
+                     {"ok", outcome.ok()},
+                     {"result", vehicle::to_string(answer.result)},
+                     {"reason", answer.accepted() ? "" : (answer.statustexts.empty() ? "" : answer.statustexts.back())},
+                     {"statustexts", answer.statustexts}});
+  } else if (outcome.ok()) {
     std::cout << (arm ? "armed" : "disarmed") << '\n';
-  } else if (outcome->accepted()) {
+  } else if (answer.accepted()) {
     std::cout << verb << " accepted, but the HEARTBEAT did not show it within 3 s\n";
   } else {
-    std::cout << verb << " " << outcome->text() << '\n';
+    std::cout << verb << " " << answer.text() << '\n';
   }
-  return confirmed ? kExitOk : kExitFailed;
+  return outcome.ok() ? kExitOk : kExitFailed;
 }
 
 }  // namespace

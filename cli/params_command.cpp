@@ -19,6 +19,7 @@
 #include "engine/vehicle/param_notes.h"
 #include "engine/vehicle/params_check.h"
 #include "engine/vehicle/params_file.h"
+#include "engine/vehicle/params_push.h"
 
 namespace hitl::cli {
 namespace {
@@ -141,38 +142,16 @@ int push(Report& report, const ParamsOptions& o, Session& s, const std::vector<v
   const bool dry_run = o.dry_run;
   auto board = download(report, s);
   if (!board) return kExitFailed;
-  std::map<std::string, vehicle::ParamValue> current;
-  for (const auto& p : *board) current[p.name] = p.value;
-  std::optional<std::string> firmware;
-  nlohmann::json set = nlohmann::json::array(), unchanged = nlohmann::json::array(), failed = nlohmann::json::array(),
+  const auto pushed = vehicle::push_params(*s.client, *s.link, *board, wanted, {dry_run, absent_ok});
+  const std::optional<std::string>& firmware = pushed.firmware;
+  nlohmann::json set = nlohmann::json::array(), unchanged = pushed.unchanged, failed = nlohmann::json::array(),
                  absent = nlohmann::json::array();
-  for (const auto& p : wanted) {
-    auto it = current.find(p.name);
-    if (it == current.end()) {
-      if (!absent_ok) {
-        failed.push_back({{"name", p.name}, {"error", "the board has no such parameter"}});
-        continue;
-      }
-      if (absent.empty()) firmware = vehicle::request_firmware_version(*s.link);
-      const vehicle::AbsentParamNote* note = vehicle::find_absent_note(p.name);
-      absent.push_back({{"name", p.name},
-                        {"note", note ? nlohmann::json("not in " + note->firmware + ": " + note->replacement) : nlohmann::json(nullptr)}});
-      continue;
-    }
-    if (it->second == p.value) {
-      unchanged.push_back(p.name);
-      continue;
-    }
-    if (dry_run) {
-      set.push_back(change(p.name, it->second, p.value));
-      continue;
-    }
-    auto r = s.client->set(p.name, p.value);
-    auto back = r ? s.client->get(p.name) : Expected<vehicle::ParamValue>(r.error());
-    if (r && back && *back == p.value) set.push_back(change(p.name, it->second, p.value));
-    else failed.push_back({{"name", p.name}, {"error", !r ? r.error().message : (!back ? back.error().message : "read back " + back->to_string())}});
-  }
-  const bool ok = failed.empty() && (absent.empty() || !o.strict);
+  for (const auto& c : pushed.set) set.push_back(change(c.name, c.from, c.to));
+  for (const auto& f : pushed.failed) failed.push_back({{"name", f.name}, {"error", f.error}});
+  for (const auto& a : pushed.absent)
+    absent.push_back({{"name", a.name},
+                      {"note", a.note ? nlohmann::json("not in " + a.note->firmware + ": " + a.note->replacement) : nlohmann::json(nullptr)}});
+  const bool ok = pushed.ok(o.strict);
   if (g.json) {
     nlohmann::json out = {{"dry_run", dry_run}, {"set", set}, {"unchanged", unchanged}, {"failed", failed}, {"ok", ok}};
     if (absent_ok) {

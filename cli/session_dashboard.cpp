@@ -24,7 +24,6 @@ Expected<hil::Session::EndReason> run_session_with_dashboard(const GlobalOptions
                                                              hil::Session& session, const hil::SessionConfig& config,
                                                              tui::SimDashboardConfig dashboard_config,
                                                              const std::function<void(tui::SimDashboard*)>& attach) {
-  if (auto exe = tui::own_executable()) dashboard_config.hitl_binary = *exe;
   tui::SimDashboard dashboard(session, config, std::move(dashboard_config));
   if (attach) attach(&dashboard);
   std::atomic<bool> stop{false};

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "engine/vehicle/patient_link.h"
 #include "tui/collect.h"
 #include "tui/draw.h"
 
@@ -52,8 +53,8 @@ std::optional<std::string> SimDashboard::refusal(Action action) const {
       if (!trajectory_.running()) return "no trajectory is being flown";
       return std::nullopt;
     case Action::FlyTrajectory:
-      if (dashboard_.trajectory_file.empty()) return "no trajectory file: " + dashboard_.no_trajectory_hint;
-      if (dashboard_.hitl_binary.empty()) return "cannot find the hitl program to run `hitl fly trajectory`";
+      if (!dashboard_.trajectory) return "no trajectory file: " + dashboard_.no_trajectory_hint;
+      if (trajectory_.running()) return "a trajectory is already being flown";
       return board_.link_refusal();
     case Action::Arm:
     case Action::Disarm:
@@ -70,23 +71,25 @@ void SimDashboard::perform(Action action, const std::string& argument) {
     case Action::TogglePause: session_.set_paused(!session_.snapshot().paused); return;
     case Action::ResetHome: session_.request_reset(); return;
     case Action::StopTrajectory:
-      log_.add_outcome(Severity::Notice, "stopping the trajectory (SIGINT to hitl fly)");
+      log_.add_outcome(Severity::Notice, "stopping the trajectory");
       trajectory_.stop();
       return;
     case Action::FlyTrajectory: {
       const std::string port = std::to_string(config_.clients_port);
-      // Through the session's client port, as an operator would from another terminal.
-      const std::vector<std::string> argv = {dashboard_.hitl_binary, "fly",     "--session-port", port, "-i", "127.0.0.1", "--port",
-                                             port,                  "trajectory", dashboard_.trajectory_file, "--mode",
-                                             dashboard_.trajectory_mode};
-      log_.add_outcome(Severity::Notice, "f: hitl fly trajectory " + dashboard_.trajectory_file + " through 127.0.0.1:" + port);
-      trajectory_flying_.store(true);
+      // Through the session's client port, as `hitl fly trajectory` from another terminal flies it.
+      log_.add_outcome(Severity::Notice, "f: flying " + dashboard_.trajectory_file + " through 127.0.0.1:" + port);
+      vehicle::FlyTrajectoryOptions options;
+      options.mode = dashboard_.trajectory_mode;
+      options.truth_sysid = config_.sysid;
+      auto link = vehicle::session_client_options(config_.clients_port, 5.0);
       auto started = trajectory_.start(
-          argv, [this](const std::string& line) { log_.add(Severity::Info, line); },
-          [this](int code, const std::string& out) {
-            log_.add_lines(code == 0 ? Severity::Notice : Severity::Error, out);
-            log_.add_outcome(code == 0 ? Severity::Notice : Severity::Error,
-                     "hitl fly trajectory ended: " + std::string(code == 0 ? "done" : "exit " + std::to_string(code)));
+          link, *dashboard_.trajectory, options, [this](const std::string& text) { log_.add(Severity::Info, text); },
+          [this](const Expected<vehicle::FlightResult>& r) {
+            if (!r) return log_.add_outcome(Severity::Error, "trajectory: " + r.error().message);
+            const Severity s = r->ok() ? Severity::Notice : r->stopped ? Severity::Warning : Severity::Error;
+            log_.add(s, r->text());
+            log_.add_outcome(s, r->stopped ? std::string("trajectory stopped in ") + vehicle::to_string(r->state)
+                                           : std::string("trajectory ended: ") + (r->ok() ? "done" : vehicle::to_string(r->state)));
           });
       if (!started) log_.add_outcome(Severity::Error, "f: " + started.error().message);
       return;

@@ -1,7 +1,8 @@
 // `hitl sim --tui`: the session's snapshots (data paths, truth, rotors, link), the vehicle's
 // telemetry and the board's dsp_hitl counters read through the session's own client port
 // (BoardClients), and the keys' actions: arm/disarm/takeoff/land and `s` through those clients,
-// pause/resume and reset on the session, `f` runs `hitl fly trajectory FILE` through the client port.
+// pause/resume and reset on the session, `f` flies the trajectory in-process (vehicle::fly_trajectory,
+// the same flight as `hitl fly trajectory`) through the client port.
 #pragma once
 
 #include <atomic>
@@ -11,8 +12,9 @@
 #include <string>
 
 #include "engine/hil/session.h"
+#include "engine/vehicle/trajectory.h"
+#include "engine/vehicle/trajectory_worker.h"
 #include "tui/board_clients.h"
-#include "tui/command_runner.h"
 #include "tui/dashboard.h"
 #include "tui/message_log.h"
 
@@ -21,9 +23,9 @@ namespace hitl::tui {
 struct SimDashboardConfig {
   std::string title = "hitl sim";  ///< the header's name (`hitl demo` for the demo)
   std::string no_trajectory_hint = "start hitl sim --tui with -t FILE.json";  ///< what `f` says without a file
-  std::string trajectory_file;  ///< -t FILE for `f` (empty: `f` says how to give one)
-  std::string trajectory_mode = "velocity";  ///< --trajectory-mode, passed on as `fly trajectory --mode`
-  std::string hitl_binary;      ///< the program `f` runs (own_executable())
+  std::string trajectory_file;  ///< -t FILE, named in the messages
+  std::optional<vehicle::Trajectory> trajectory;  ///< what `f` flies, read from trajectory_file (none: `f` says how to give one)
+  vehicle::StickMode trajectory_mode = vehicle::StickMode::Velocity;  ///< --trajectory-mode
 };
 
 class SimDashboard : public DashboardSource, public DashboardActions, public hil::Session::Observer {
@@ -53,8 +55,7 @@ class SimDashboard : public DashboardSource, public DashboardActions, public hil
   SimDashboardConfig dashboard_;
   MessageLog log_;
   BoardClients board_;
-  CommandRunner trajectory_;
-  std::atomic<bool> trajectory_flying_{false};
+  vehicle::TrajectoryWorker trajectory_;
   mutable std::mutex finished_mutex_;
   std::optional<std::string> finished_;
 };

@@ -15,8 +15,9 @@
 #include "base/mavlink/message_set.h"
 #include "base/mavlink/sequence_tracker.h"
 #include "engine/net/client_port.h"
-#include "engine/net/tcp_client.h"
-#include "engine/net/udp_endpoint.h"
+#include "engine/net/link.h"
+#include "engine/net/tcp_links.h"
+#include "engine/net/udp_link.h"
 #include "engine/router/router.h"
 
 namespace hitl::bridge {
@@ -31,17 +32,47 @@ constexpr std::size_t kMaxDatagramsPerDrain = 256;
 
 std::string source_key(uint8_t sysid, uint8_t compid) { return std::to_string(sysid) + "/" + std::to_string(compid); }
 
-/// One --endpoint: its socket (or connection), its parser and its place in the router.
+/// One --endpoint: its link, its parser and its place in the router.
 struct Endpoint {
   EndpointSpec spec;
-  std::optional<net::UdpEndpoint> udp;
-  std::optional<net::TcpClient> tcp;
-  std::optional<net::SocketAddress> tcp_address;
+  std::unique_ptr<net::Link> link;
   std::unique_ptr<mavlink::FrameParser> parser;
-  router::LinkId link = 0;
-  double next_connect_s = 0;
-  bool warned = false;  ///< a failed connect is said once, not every 2 s
+  uint64_t parser_connects = 0;  ///< a TCP reconnect starts a fresh parser
+  router::LinkId route = 0;
 };
+
+/// The link an --endpoint names: udp:HOST:PORT hears its peer only; udpin:PORT answers whoever
+/// spoke last; tcp:HOST:PORT reconnects every kReconnectPeriod_s.
+Expected<std::unique_ptr<net::Link>> open_endpoint_link(const EndpointSpec& spec) {
+  const std::string name = "--endpoint " + spec.text;
+  if (spec.kind == EndpointSpec::Kind::Tcp) {
+    auto a = net::SocketAddress::resolve(spec.host, spec.port);
+    if (!a) return Error{name + ": " + a.error().message};
+    net::TcpClientLink::Config c;
+    c.server = *a;
+    c.name = name;
+    c.connect_timeout_ms = kTcpConnectTimeout_ms;
+    c.reconnect_period_s = kReconnectPeriod_s;
+    auto link = net::TcpClientLink::open(c);
+    if (!link) return link.error();
+    return std::unique_ptr<net::Link>(std::move(link.value()));
+  }
+  net::UdpLink::Config c;
+  c.endpoint.name = name;
+  if (spec.kind == EndpointSpec::Kind::Udp) {
+    auto a = net::SocketAddress::resolve(spec.host, spec.port);
+    if (!a) return Error{name + ": " + a.error().message};
+    c.endpoint.peer = *a;
+    c.endpoint.policy = net::PartnerPolicy::Fixed;
+    c.hear_peer_only = true;
+  } else {
+    c.endpoint.bind_port = spec.port;
+    c.endpoint.policy = net::PartnerPolicy::LastSender;
+  }
+  auto link = net::UdpLink::open(c);
+  if (!link) return link.error();
+  return std::unique_ptr<net::Link>(std::move(link.value()));
+}
 
 class Bridge {
  public:
@@ -53,14 +84,15 @@ class Bridge {
     auto target = net::SocketAddress::resolve(config_.board_ip, config_.board_port);
     if (!target) return Error{"-i " + config_.board_ip + ": " + target.error().message};
     board_address_ = *target;
-    net::UdpEndpoint::Config c;
-    c.bind_port = config_.local_port;
-    c.peer = *target;
-    c.policy = net::PartnerPolicy::Fixed;
-    c.name = "the board link's local port (--local-port)";
-    auto ep = net::UdpEndpoint::open(c);
+    net::UdpLink::Config c;
+    c.endpoint.bind_port = config_.local_port;
+    c.endpoint.peer = *target;
+    c.endpoint.policy = net::PartnerPolicy::Fixed;
+    c.endpoint.name = "the board link's local port (--local-port)";
+    c.hear_peer_only = true;  // the board answers from its own port; anyone else is not the board
+    auto ep = net::UdpLink::open(c);
     if (!ep) return Error{ep.error().message + " (a hitl sim, another hitl bridge or a direct command owns it?)"};
-    board_.emplace(std::move(ep.value()));
+    board_ = std::move(ep.value());
     board_link_ = router_.add_link("board", [this](std::span<const uint8_t> bytes, const auto&) { (void)board_->send(bytes); });
 
     if (config_.clients_port != 0) {
@@ -77,30 +109,13 @@ class Bridge {
       auto e = std::make_unique<Endpoint>();
       e->spec = spec;
       e->parser = std::make_unique<mavlink::FrameParser>(messages_);
-      if (spec.kind == EndpointSpec::Kind::Tcp) {
-        auto a = net::SocketAddress::resolve(spec.host, spec.port);
-        if (!a) return Error{"--endpoint " + spec.text + ": " + a.error().message};
-        e->tcp_address = *a;
-      } else {
-        net::UdpEndpoint::Config uc;
-        uc.name = "--endpoint " + spec.text;
-        if (spec.kind == EndpointSpec::Kind::Udp) {
-          auto a = net::SocketAddress::resolve(spec.host, spec.port);
-          if (!a) return Error{"--endpoint " + spec.text + ": " + a.error().message};
-          uc.peer = *a;
-          uc.policy = net::PartnerPolicy::Fixed;
-        } else {
-          uc.bind_port = spec.port;
-          uc.policy = net::PartnerPolicy::LastSender;
-        }
-        auto u = net::UdpEndpoint::open(uc);
-        if (!u) return u.error();
-        e->udp.emplace(std::move(u.value()));
-      }
-      Endpoint* raw = e.get();
-      e->link = router_.add_link(spec.text, [raw](std::span<const uint8_t> bytes, const auto&) {
-        if (raw->udp) (void)raw->udp->send(bytes);  // udpin: nobody to answer until someone spoke
-        else if (raw->tcp) (void)raw->tcp->send(bytes);
+      auto link = open_endpoint_link(spec);
+      if (!link) return link.error();
+      e->link = std::move(link.value());
+      net::Link* raw = e->link.get();
+      e->route = router_.add_link(spec.text, [raw](std::span<const uint8_t> bytes, const auto&) {
+        // udpin: nobody to answer until someone spoke; tcp: nothing while disconnected
+        if (raw->connected() && raw->peer()) (void)raw->send(bytes);
       });
       endpoints_.push_back(std::move(e));
     }
@@ -125,7 +140,8 @@ class Bridge {
         if (next_tick_s_ < now) next_tick_s_ = now + config_.health_period_s;
         tick(now);
       }
-      connect_tcp_endpoints(now);
+      for (auto& e : endpoints_) e->link->maintain(now);
+      say_link_events();
       wait_readable(std::min(50.0, (next_tick_s_ - monotonic_s()) * 1000.0));
       drain(monotonic_s());
       if (clients_) clients_->pump();
@@ -139,68 +155,34 @@ class Bridge {
     std::vector<pollfd> fds;
     fds.push_back({board_->fd(), POLLIN, 0});
     if (clients_) fds.push_back({clients_->fd(), POLLIN, 0});
-    for (const auto& e : endpoints_) {
-      if (e->udp) fds.push_back({e->udp->fd(), POLLIN, 0});
-    }
-    const bool any_tcp = std::any_of(endpoints_.begin(), endpoints_.end(), [](const auto& e) { return e->tcp.has_value(); });
-    int ms = any_tcp ? 5 : std::max(0, static_cast<int>(timeout_ms));  // TCP is polled by its own wait
+    for (const auto& e : endpoints_)
+      if (e->link->fd() >= 0) fds.push_back({e->link->fd(), POLLIN, 0});
+    int ms = std::max(0, static_cast<int>(timeout_ms));
     if (clients_ && clients_->queued_frames() > 0) ms = 0;  // the client port's send bound left some for later
     (void)::poll(fds.data(), fds.size(), ms);
   }
 
   void drain(double now) {
-    for (std::size_t read = 0; read < kMaxDatagramsPerDrain; ++read) {
-      auto d = board_->receive();
-      if (!d) break;
-      if (d->from != *board_address_) {  // the board answers from its own port; anyone else is not the board
-        ++ignored_other_address_;
-        continue;
-      }
-      board_parser_.parse_datagram(d->bytes, [&](const mavlink::Frame& f) { on_board_frame(f, now); });
-    }
+    board_->drain(board_parser_, [&](const mavlink::Frame& f) { on_board_frame(f, now); }, kMaxDatagramsPerDrain);
     if (clients_) {
       clients_->receive_some(kMaxClientDatagramsPerDrain, [&](const net::Datagram& d) {
         clients_parser_.parse_datagram(d.bytes, [&](const mavlink::Frame& f) { router_.route(f, clients_link_, now, d.from); });
       });
     }
     for (auto& e : endpoints_) {
-      if (e->udp) {
-        for (std::size_t read = 0; read < kMaxDatagramsPerDrain; ++read) {
-          auto d = e->udp->receive();
-          if (!d) break;
-          if (e->spec.kind == EndpointSpec::Kind::Udp && d->from != *e->udp->partner()) {  // udp:HOST:PORT hears its peer only
-            ++ignored_other_address_;
-            continue;
-          }
-          e->parser->parse_datagram(d->bytes, [&](const mavlink::Frame& f) { router_.route(f, e->link, now); });
-        }
-      } else if (e->tcp && e->tcp->wait_readable(0)) {
-        auto bytes = e->tcp->receive();
-        if (!bytes) {
-          observer_.on_event("--endpoint " + e->spec.text + ": connection closed; reconnecting every 2 s", Severity::Warning);
-          e->tcp.reset();
-          e->next_connect_s = now + kReconnectPeriod_s;
-        } else {
-          e->parser->feed(*bytes, [&](const mavlink::Frame& f) { router_.route(f, e->link, now); });
-        }
+      if (e->link->stats().connects != e->parser_connects) {  // a new TCP connection: a fresh stream
+        e->parser_connects = e->link->stats().connects;
+        e->parser = std::make_unique<mavlink::FrameParser>(messages_);
       }
+      e->link->drain(*e->parser, [&](const mavlink::Frame& f) { router_.route(f, e->route, now); }, kMaxDatagramsPerDrain);
     }
+    say_link_events();
   }
 
-  void connect_tcp_endpoints(double now) {
-    for (auto& e : endpoints_) {
-      if (!e->tcp_address || e->tcp || now < e->next_connect_s) continue;
-      e->next_connect_s = now + kReconnectPeriod_s;
-      auto c = net::TcpClient::connect(*e->tcp_address, kTcpConnectTimeout_ms, "--endpoint " + e->spec.text);
-      if (c) {
-        e->tcp.emplace(std::move(c.value()));
-        e->parser = std::make_unique<mavlink::FrameParser>(messages_);
-        observer_.on_event("--endpoint " + e->spec.text + ": connected", Severity::Info);
-      } else if (!e->warned) {
-        e->warned = true;
-        observer_.on_event(c.error().message + "; retrying every 2 s", Severity::Warning);
-      }
-    }
+  /// What the --endpoint links said (TCP connected, lost, retrying).
+  void say_link_events() {
+    for (auto& e : endpoints_)
+      for (const auto& ev : e->link->take_events()) observer_.on_event(ev.text, ev.warning ? Severity::Warning : Severity::Info);
   }
 
   void on_board_frame(const mavlink::Frame& f, double now) {
@@ -281,8 +263,7 @@ class Bridge {
     // Each destination's first refused send, said at once; later ones are counted (send_errors).
     for (const auto& text : board_->take_send_errors()) observer_.on_event(text, Severity::Warning);
     for (const auto& e : endpoints_)
-      if (e->udp)
-        for (const auto& text : e->udp->take_send_errors()) observer_.on_event("--endpoint " + e->spec.text + ": " + text, Severity::Warning);
+      for (const auto& text : e->link->take_send_errors()) observer_.on_event("--endpoint " + e->spec.text + ": " + text, Severity::Warning);
     observer_.on_health(health(now));
   }
 
@@ -296,7 +277,7 @@ class Bridge {
       const auto& s = tracker.stats();
       h.loss[key] = SourceLoss{s.received, s.lost, 100.0 * s.loss_ratio()};
     }
-    const auto link_health = [&](router::LinkId id, std::string partner, bool connected, const net::UdpEndpoint* udp = nullptr) {
+    const auto link_health = [&](router::LinkId id, std::string partner, bool connected, const net::Link* link = nullptr) {
       const auto& c = router_.counters(id);
       LinkHealth l;
       l.name = router_.name(id);
@@ -304,26 +285,26 @@ class Bridge {
       l.connected = connected;
       l.packets_in = c.frames_in;
       l.bytes_in = c.bytes_in;
-      l.send_errors = udp != nullptr ? udp->stats().send_errors : 0;  // one frame a datagram on these links
+      l.send_errors = link != nullptr ? link->stats().send_errors : 0;  // one frame a datagram (or write) on these links
       l.packets_out = c.frames_out - std::min(c.frames_out, l.send_errors);
       l.bytes_out = c.bytes_out;
       l.duplicates_in = c.duplicates_in;
       return l;
     };
-    h.links.push_back(link_health(board_link_, board_address_->to_string(), last_frame_s_ >= 0 && !gone_, &*board_));
+    h.links.push_back(link_health(board_link_, board_address_->to_string(), last_frame_s_ >= 0 && !gone_, board_.get()));
     if (clients_) {
       h.clients = clients_->client_count();
       h.links.push_back(link_health(clients_link_, clients_->local_address()->to_string(), h.clients > 0));
     }
+    uint64_t ignored = board_->stats().ignored_other_address;
     for (const auto& e : endpoints_) {
-      std::string partner;
-      if (e->udp && e->udp->partner()) partner = e->udp->partner()->to_string();
-      if (e->tcp_address) partner = e->tcp_address->to_string();
-      h.links.push_back(link_health(e->link, partner, e->udp ? e->udp->partner().has_value() : e->tcp.has_value(),
-                                    e->udp ? &*e->udp : nullptr));
+      const auto peer = e->link->peer();
+      h.links.push_back(link_health(e->route, peer ? peer->to_string() : std::string{}, e->link->connected() && peer.has_value(),
+                                    e->link.get()));
+      ignored += e->link->stats().ignored_other_address;
     }
     h.duplicates = router_.duplicates();
-    h.ignored_other_address = ignored_other_address_;
+    h.ignored_other_address = ignored;
     h.untracked_frames = untracked_frames_;
     return h;
   }
@@ -336,12 +317,11 @@ class Bridge {
   mavlink::FrameParser clients_parser_;
   mavlink::FrameEncoder own_;
   std::optional<net::SocketAddress> board_address_;
-  std::optional<net::UdpEndpoint> board_;
+  std::unique_ptr<net::Link> board_;
   std::optional<net::ClientPort> clients_;
   std::vector<std::unique_ptr<Endpoint>> endpoints_;
   router::LinkId board_link_ = 0, clients_link_ = 0;
   std::map<std::string, mavlink::SequenceTracker> sequences_;
-  uint64_t ignored_other_address_ = 0;
   uint64_t untracked_frames_ = 0;
   std::deque<int64_t> timesync_sent_ns_;
   std::optional<double> rtt_ms_;

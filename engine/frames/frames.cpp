@@ -57,4 +57,11 @@ double heading_rad(const Eigen::Quaterniond& q_FLU_to_ENU) {
   return euler_from(q_FRD_to_NED_from(q_FLU_to_ENU)).yaw_rad;
 }
 
+double yaw_ENU_rad(const Eigen::Quaterniond& q_FLU_to_ENU) {
+  const Eigen::Matrix3d R_FLU_to_ENU = q_FLU_to_ENU.toRotationMatrix();
+  return std::atan2(R_FLU_to_ENU(1, 0), R_FLU_to_ENU(0, 0));  // FLU x expressed in ENU: (east, north)
+}
+
+double yaw_ENU_from_heading_rad(double heading_rad) { return std::remainder(M_PI / 2 - heading_rad, 2 * M_PI); }
+
 }  // namespace hitl::frames

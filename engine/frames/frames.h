@@ -43,5 +43,10 @@ Eigen::Quaterniond q_FRD_to_NED_from(const EulerAngles& euler);
 
 /// Heading (yaw, radians, 0 north, +pi/2 east) of a vehicle whose body FLU has attitude q_FLU_to_ENU.
 double heading_rad(const Eigen::Quaterniond& q_FLU_to_ENU);
+/// Yaw in world ENU (radians, 0 east, counter-clockwise positive, in [-pi, pi]) of a vehicle whose
+/// body FLU has attitude q_FLU_to_ENU: the direction of its nose (FLU x) in the ENU x-y plane.
+double yaw_ENU_rad(const Eigen::Quaterniond& q_FLU_to_ENU);
+/// The same yaw from a NED heading (0 north, +pi/2 east): yaw_ENU = pi/2 - heading, in [-pi, pi].
+double yaw_ENU_from_heading_rad(double heading_rad);
 
 }  // namespace hitl::frames

@@ -27,6 +27,7 @@ class TcpClient {
   /// What is waiting (empty when nothing); an Error when the server closed the connection.
   Expected<std::span<const uint8_t>> receive();
   const SocketAddress& peer() const { return peer_; }
+  int fd() const { return fd_; }
 
  private:
   TcpClient(int fd, SocketAddress peer, std::string name) : fd_(fd), peer_(peer), name_(std::move(name)), buffer_(65536) {}

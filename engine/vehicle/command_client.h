@@ -9,6 +9,7 @@
 
 #include "base/common/expected.h"
 #include "base/mavlink/enums.h"
+#include "engine/vehicle/command_request.h"
 #include "engine/vehicle/vehicle_link.h"
 
 namespace hitl::vehicle {
@@ -32,6 +33,9 @@ class CommandClient {
   /// An Error only when no COMMAND_ACK came back at all (after `retries` sends).
   Expected<CommandOutcome> send(uint16_t command, const std::array<float, 7>& params, double timeout_s = 1.0,
                                 int retries = 3, double in_progress_limit_s = 30.0);
+  Expected<CommandOutcome> send(const CommandRequest& request, double timeout_s = 1.0) {
+    return send(request.command, request.params, timeout_s);
+  }
 
  private:
   VehicleLink& link_;

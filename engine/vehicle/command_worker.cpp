@@ -1,17 +1,8 @@
 #include "engine/vehicle/command_worker.h"
 
-#include <cmath>
-
-#include "base/mavlink/enums.h"
-#include "base/mavlink/messages.h"
-#include "engine/vehicle/command_client.h"
 #include "engine/vehicle/patient_link.h"
 
 namespace hitl::vehicle {
-namespace {
-namespace msg = mavlink::msg;
-constexpr double kConfirm_s = 3.0;  ///< how long HEARTBEAT may take to show an accepted arm/disarm
-}  // namespace
 
 const char* to_string(OperatorCommand command) {
   switch (command) {
@@ -54,36 +45,32 @@ std::size_t CommandWorker::pending() const {
 }
 
 void CommandWorker::execute(VehicleLink& link, OperatorCommand command) {
-  CommandClient client(link);
-  const char* name = to_string(command);
-  auto report = [&](bool ok, const std::string& text) {
-    if (outcome_) outcome_(command, ok, text);
-  };
-  Expected<CommandOutcome> outcome = Error{""};
+  Action action(link);
+  ActionOutcome outcome;
   switch (command) {
-    case OperatorCommand::Arm:
-    case OperatorCommand::Disarm:
-    case OperatorCommand::ForceDisarm: {
-      const bool arm = command == OperatorCommand::Arm;
-      const float force = command == OperatorCommand::ForceDisarm ? mavlink::cmd::kArmDisarmForceMagic : 0.0f;
-      outcome = client.send(mavlink::cmd::kComponentArmDisarm, {arm ? 1.0f : 0.0f, force, 0, 0, 0, 0, 0});
-      if (!outcome) return report(false, std::string(name) + ": " + outcome.error().message);
-      if (!outcome->accepted()) return report(false, std::string(name) + " " + outcome->text());
-      const bool shown = link.wait(kConfirm_s, [&](const mavlink::Frame& f) {
-        return f.is<msg::Heartbeat>() && ((f.as<msg::Heartbeat>().base_mode & mavlink::mode_flag::kSafetyArmed) != 0) == arm;
-      });
-      if (!shown) return report(false, std::string(name) + " accepted, but HEARTBEAT did not show it within 3 s");
-      return report(true, arm ? "armed" : "disarmed");
-    }
-    case OperatorCommand::Takeoff:  // NaN altitude: the board's MIS_TAKEOFF_ALT above home
-      outcome = client.send(mavlink::cmd::kNavTakeoff, {0, 0, 0, NAN, NAN, NAN, NAN});
-      break;
-    case OperatorCommand::Land:
-      outcome = client.send(mavlink::cmd::kNavLand, {0, 0, 0, NAN, NAN, NAN, NAN});
-      break;
+    case OperatorCommand::Arm: outcome = action.arm(); break;
+    case OperatorCommand::Disarm: outcome = action.disarm(); break;
+    case OperatorCommand::ForceDisarm: outcome = action.disarm(/*force=*/true); break;
+    case OperatorCommand::Takeoff: outcome = action.takeoff(); break;  // the board's MIS_TAKEOFF_ALT above home
+    case OperatorCommand::Land: outcome = action.land(); break;
   }
-  if (!outcome) return report(false, std::string(name) + ": " + outcome.error().message);
-  report(outcome->accepted(), std::string(name) + " " + outcome->text());
+  if (outcome_) outcome_(command, outcome.ok(), outcome_text(command, outcome));
+}
+
+std::string outcome_text(OperatorCommand command, const ActionOutcome& outcome) {
+  const std::string name = to_string(command);
+  const bool arming = command == OperatorCommand::Arm || command == OperatorCommand::Disarm || command == OperatorCommand::ForceDisarm;
+  switch (outcome.result) {
+    case ActionResult::Success:
+      if (arming) return command == OperatorCommand::Arm ? "armed" : "disarmed";
+      return name + " " + outcome.command->text();
+    case ActionResult::Refused: return name + " " + outcome.command->text();
+    case ActionResult::NotShown:
+      return name + " accepted, but HEARTBEAT did not show it within " + std::to_string(static_cast<int>(Action::kShowArmed_s)) + " s";
+    case ActionResult::NoAnswer:
+    case ActionResult::NoPosition: return name + ": " + outcome.error;
+  }
+  return name;
 }
 
 void CommandWorker::run() {

@@ -1,8 +1,8 @@
 // The operator's commands for a dashboard, on their own thread and their own link, one at a time
 // in the order asked: arm, disarm (forced when the operator confirmed a disarm in the air),
-// takeoff, land; each through CommandClient (COMMAND_LONG with retries and its ACK, the board's
-// STATUSTEXT as the reason), as `hitl arm` / `hitl fly` send them. Arming and disarming succeed only
-// once HEARTBEAT shows the new state. Outcomes go to a callback, in words.
+// takeoff, land; each through the action API (engine/vehicle/action.h), as `hitl arm` / `hitl fly`
+// send them. Arming and disarming succeed only once HEARTBEAT shows the new state; takeoff and land
+// once accepted. Outcomes go to a callback, in words.
 #pragma once
 
 #include <atomic>
@@ -13,12 +13,15 @@
 #include <string>
 #include <thread>
 
+#include "engine/vehicle/action.h"
 #include "engine/vehicle/vehicle_link.h"
 
 namespace hitl::vehicle {
 
 enum class OperatorCommand { Arm, Disarm, ForceDisarm, Takeoff, Land };
 const char* to_string(OperatorCommand command);  ///< "arm", "disarm", "force disarm", "takeoff", "land"
+/// "armed", "takeoff accepted", "arm temporarily rejected: Preflight Fail: ...", "land: no COMMAND_ACK ..."
+std::string outcome_text(OperatorCommand command, const ActionOutcome& outcome);
 
 class CommandWorker {
  public:

@@ -4,13 +4,12 @@
 #include <cmath>
 
 #include "base/mavlink/enums.h"
+#include "engine/vehicle/action.h"
 
 namespace hitl::vehicle {
 namespace {
 
 namespace msg = mavlink::msg;
-constexpr uint8_t kPx4MainModePosctl = 3;
-constexpr uint8_t kPx4MainModeStabilized = 7;
 constexpr double kGravity_m_s2 = 9.80665;
 constexpr double kMaxHoverCorrection_m_s2 = 3.0;  ///< the integrator's authority
 
@@ -74,7 +73,7 @@ void TrajectoryPilot::on_board_frame(const mavlink::Frame& f) {
   if (f.is<msg::Heartbeat>()) {
     const auto hb = f.as<msg::Heartbeat>();
     if (hb.autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid))
-      armed_ = (hb.base_mode & mavlink::mode_flag::kSafetyArmed) != 0;
+      armed_ = shows_armed(hb);
   } else if (f.is<msg::SysStatus>()) {
     ready_ = (f.as<msg::SysStatus>().onboard_control_sensors_health & mavlink::sys_status::kPrearmCheck) != 0;
   } else if (f.is<msg::CommandAck>()) {
@@ -84,11 +83,12 @@ void TrajectoryPilot::on_board_frame(const mavlink::Frame& f) {
   }
 }
 
-msg::CommandLong TrajectoryPilot::command(uint16_t id, std::array<float, 7> p) const {
+msg::CommandLong TrajectoryPilot::command(const CommandRequest& request) const {
+  const auto& p = request.params;
   msg::CommandLong c;
   c.target_system = config_.target_system;
   c.target_component = config_.target_component;
-  c.command = id;
+  c.command = request.command;
   c.param1 = p[0]; c.param2 = p[1]; c.param3 = p[2]; c.param4 = p[3]; c.param5 = p[4]; c.param6 = p[5]; c.param7 = p[6];
   return c;
 }
@@ -182,7 +182,7 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
       if (armed_) {
         enter(PilotState::Takeoff, t_s, out, "armed");
       } else if (resend) {
-        out.commands.push_back(command(mavlink::cmd::kComponentArmDisarm, {1, 0, 0, 0, 0, 0, 0}));
+        out.commands.push_back(command(arm_request()));
         last_command_s_ = t_s;
       }
       break;
@@ -198,8 +198,7 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         }
         const bool attitude = config_.mode == StickMode::Attitude;
         if (!mode_set_ && resend && in_state_s > 0.2) {
-          const float main_mode = attitude ? kPx4MainModeStabilized : kPx4MainModePosctl;
-          out.commands.push_back(command(mavlink::cmd::kDoSetMode, {1, main_mode, 0, 0, 0, 0, 0}));
+          out.commands.push_back(command(set_mode_request(attitude ? kPx4Stabilized : kPx4Position)));
           last_command_s_ = t_s;
         }
         if (mode_set_) {
@@ -210,7 +209,7 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
                 "at " + std::to_string(z0).substr(0, 4) + " m, " + (attitude ? "Stabilized" : "Position") + " mode");
         }
       } else if (takeoff_ack_ != 0 && resend) {
-        out.commands.push_back(command(mavlink::cmd::kNavTakeoff, {0, 0, 0, NAN, NAN, NAN, static_cast<float>(config_.home_alt_msl_m + z0)}));
+        out.commands.push_back(command(takeoff_request(config_.home_alt_msl_m + z0)));
         last_command_s_ = t_s;
       }
       break;
@@ -239,7 +238,7 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
       if (!armed_) {
         enter(PilotState::Done, t_s, out, "landed and disarmed");
       } else if (resend) {
-        out.commands.push_back(command(mavlink::cmd::kNavLand, {0, 0, 0, NAN, NAN, NAN, NAN}));
+        out.commands.push_back(command(land_request()));
         last_command_s_ = t_s;
         if (in_state_s > 30.0) enter(PilotState::Disarm, t_s, out, "no auto-disarm after 30 s");
       }
@@ -247,7 +246,7 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
     case PilotState::Disarm:
       if (!armed_) enter(PilotState::Done, t_s, out, "disarmed");
       else if (resend) {
-        out.commands.push_back(command(mavlink::cmd::kComponentArmDisarm, {0, 0, 0, 0, 0, 0, 0}));
+        out.commands.push_back(command(disarm_request()));
         last_command_s_ = t_s;
       }
       break;

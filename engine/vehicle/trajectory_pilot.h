@@ -1,7 +1,7 @@
 // The spec's trajectory_rc automation: INIT -> ARM -> TAKEOFF -> TRAJECTORY -> HOLD -> LAND ->
 // DISARM -> DONE. It arms, takes off to the first waypoint's height, switches to a manual mode and
 // flies the trajectory by stick (RC_CHANNELS_OVERRIDE, PX4's default channel map), holds, lands
-// and waits for the disarm. Two stick modes:
+// and waits for the disarm. Its commands are the action API's requests (action.h). Two stick modes:
 //   Velocity (Position mode, POSCTL): a P-controller from position error to velocity sticks.
 //   Attitude (Stabilized): the pilot closes position and velocity itself: position error -> velocity
 //     -> acceleration -> tilt sticks (stick = tilt / MPC_MAN_TILT_MAX) and a thrust stick through
@@ -18,6 +18,7 @@
 
 #include "base/mavlink/frame.h"
 #include "base/mavlink/messages.h"
+#include "engine/vehicle/command_request.h"
 #include "engine/vehicle/trajectory.h"
 
 namespace hitl::vehicle {
@@ -96,7 +97,7 @@ class TrajectoryPilot {
 
  private:
   void enter(PilotState next, double t_s, PilotOutput& out, const std::string& why = "");
-  mavlink::msg::CommandLong command(uint16_t id, std::array<float, 7> params) const;
+  mavlink::msg::CommandLong command(const CommandRequest& request) const;
   mavlink::msg::RcChannelsOverride sticks(double roll, double pitch, double yaw, double throttle) const;
   mavlink::msg::RcChannelsOverride velocity_sticks(const TrajectoryReference& ref, const PilotPose& pose) const;
   mavlink::msg::RcChannelsOverride attitude_sticks(const TrajectoryReference& ref, const PilotPose& pose, double dt_s);

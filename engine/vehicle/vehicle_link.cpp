@@ -10,19 +10,23 @@
 
 #include "base/mavlink/enums.h"
 #include "base/mavlink/heartbeat.h"
+#include "engine/net/tcp_links.h"
+#include "engine/net/udp_link.h"
 
 namespace hitl::vehicle {
 namespace {
 
-Expected<net::UdpEndpoint> open_endpoint(const std::string& bind, uint16_t port, std::optional<net::SocketAddress> peer,
-                                         net::PartnerPolicy policy, const std::string& name) {
-  net::UdpEndpoint::Config c;
-  c.bind_address = bind;
-  c.bind_port = port;
-  c.peer = peer;
-  c.policy = policy;
-  c.name = name;
-  return net::UdpEndpoint::open(c);
+Expected<std::unique_ptr<net::Link>> open_udp(const std::string& bind, uint16_t port, std::optional<net::SocketAddress> peer,
+                                              net::PartnerPolicy policy, const std::string& name) {
+  net::UdpLink::Config c;
+  c.endpoint.bind_address = bind;
+  c.endpoint.bind_port = port;
+  c.endpoint.peer = peer;
+  c.endpoint.policy = policy;
+  c.endpoint.name = name;
+  auto link = net::UdpLink::open(c);
+  if (!link) return link.error();
+  return std::unique_ptr<net::Link>(std::move(link.value()));
 }
 
 /// True unless the kernel says at once that nothing listens there (a connected UDP socket gets the
@@ -45,10 +49,8 @@ bool maybe_listening(const net::SocketAddress& address) {
 
 }  // namespace
 
-VehicleLink::VehicleLink(std::optional<net::UdpEndpoint> udp, std::optional<net::TcpClient> tcp, const LinkOptions& options,
-                         std::string description)
-    : udp_(std::move(udp)),
-      tcp_(std::move(tcp)),
+VehicleLink::VehicleLink(std::unique_ptr<net::Link> link, const LinkOptions& options, std::string description)
+    : link_(std::move(link)),
       messages_(mavlink::MessageSet::compiled()),
       parser_(messages_),
       encoder_(options.own_sysid, options.own_compid),
@@ -61,11 +63,9 @@ void VehicleLink::heartbeat() {
 }
 
 void VehicleLink::send_bytes(std::span<const uint8_t> bytes) {
-  if (tcp_) {
-    if (!closed_ && !tcp_->send(bytes)) closed_ = true;
-  } else if (auto st = udp_->send(bytes); !st && send_error_.empty()) {
-    send_error_ = st.error().message;  // the first refusal, errno and the likely fix
-  }
+  if (!link_->connected()) return;  // a TCP server that went away: nothing more to send
+  // The first refusal, errno and the likely fix; a stream that broke is closed, not refused.
+  if (auto st = link_->send(bytes); !st && link_->connected() && send_error_.empty()) send_error_ = st.error().message;
 }
 
 bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
@@ -80,29 +80,17 @@ bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
     done = handler(f);
   };
   for (;;) {
-    if (closed_) return false;
+    if (!link_->connected()) return false;  // a stream does not come back: the caller's wait ends
     if (options_.stop != nullptr && options_.stop->load()) return false;
     if (monotonic_s() - last_heartbeat_s_ >= 1.0) heartbeat();
     // Nothing could be sent and nothing came: no answer will come, so do not wait for one.
-    if (udp_ && udp_->stats().datagrams_out == 0 && udp_->stats().send_errors > 0 && udp_->stats().datagrams_in == 0)
-      return false;
+    if (const auto& st = link_->stats(); st.datagrams_out == 0 && st.send_errors > 0 && st.datagrams_in == 0) return false;
     const double left = end - monotonic_s();
     if (left <= 0) return false;
     const int wait_ms = static_cast<int>(std::min(left, 0.2) * 1000) + 1;
-    if (tcp_) {
-      if (!tcp_->wait_readable(wait_ms)) continue;
-      auto bytes = tcp_->receive();
-      if (!bytes) {
-        closed_ = true;  // a stream does not come back: the caller's wait ends
-        return false;
-      }
-      parser_.feed(*bytes, on_frame);
-    } else {
-      if (!udp_->wait_readable(wait_ms)) continue;
-      while (auto d = udp_->receive()) {
-        parser_.parse_datagram(d->bytes, on_frame);
-        if (done) break;
-      }
+    if (!link_->wait_readable(wait_ms)) continue;
+    // One read at a time: what comes after the frame that ends the wait stays for the next wait.
+    while (!done && link_->drain(parser_, on_frame, 1) > 0) {
     }
     if (done) return true;
   }
@@ -122,15 +110,15 @@ bool VehicleLink::discover(double timeout_s) {
 
 Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& options) {
   const std::string& spec = options.connect;
-  auto make = [&](net::UdpEndpoint ep, std::string description) {
-    return std::unique_ptr<VehicleLink>(new VehicleLink(std::move(ep), std::nullopt, options, std::move(description)));
+  auto make = [&](std::unique_ptr<net::Link> l, std::string description) {
+    return std::unique_ptr<VehicleLink>(new VehicleLink(std::move(l), options, std::move(description)));
   };
   std::unique_ptr<VehicleLink> link;
   if (spec == "auto") {
     // A running session first: it routes to the board, whose instance answers only the session.
     auto session = net::SocketAddress::resolve("127.0.0.1", options.session_port);
     if (session && maybe_listening(*session)) {
-      auto ep = open_endpoint("127.0.0.1", 0, *session, net::PartnerPolicy::Fixed, "session client");
+      auto ep = open_udp("127.0.0.1", 0, *session, net::PartnerPolicy::Fixed, "session client");
       if (ep) {
         link = make(std::move(ep.value()), "through the session on 127.0.0.1:" + std::to_string(options.session_port));
         if (link->discover(std::min(options.timeout_s, 1.5))) return link;
@@ -138,7 +126,7 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
     }
     auto board = net::SocketAddress::resolve(options.target_ip, options.gcs_port);
     if (!board) return Error{"-i: " + board.error().message};
-    auto ep = open_endpoint("0.0.0.0", options.local_port, *board, net::PartnerPolicy::Fixed, "--local-port");
+    auto ep = open_udp("0.0.0.0", options.local_port, *board, net::PartnerPolicy::Fixed, "--local-port");
     if (!ep)
       return Error{"local port " + std::to_string(options.local_port) +
                    " is busy: another hitl command is talking to the board; run `hitl bridge` and let every command "
@@ -147,22 +135,25 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
   } else if (spec.rfind("udp:", 0) == 0) {
     auto peer = net::SocketAddress::parse(spec.substr(4), "--connect");
     if (!peer) return peer.error();
-    auto ep = open_endpoint("0.0.0.0", options.local_port, *peer, net::PartnerPolicy::Fixed, "--local-port");
+    auto ep = open_udp("0.0.0.0", options.local_port, *peer, net::PartnerPolicy::Fixed, "--local-port");
     if (!ep) return ep.error();
     link = make(std::move(ep.value()), "to " + peer->to_string() + " from port " + std::to_string(options.local_port));
   } else if (spec.rfind("udpin:", 0) == 0) {
     auto port = net::parse_port(spec.substr(6), "--connect udpin");
     if (!port) return port.error();
-    auto ep = open_endpoint("0.0.0.0", *port, std::nullopt, net::PartnerPolicy::LastSender, "--connect udpin");
+    auto ep = open_udp("0.0.0.0", *port, std::nullopt, net::PartnerPolicy::LastSender, "--connect udpin");
     if (!ep) return ep.error();
     link = make(std::move(ep.value()), "listening on UDP " + std::to_string(*port));
   } else if (spec.rfind("tcp:", 0) == 0) {
     auto peer = net::SocketAddress::parse(spec.substr(4), "--connect");
     if (!peer) return peer.error();
-    auto tcp = net::TcpClient::connect(*peer, static_cast<int>(options.timeout_s * 1000), "--connect");
+    net::TcpClientLink::Config c;
+    c.server = *peer;
+    c.name = "--connect";
+    c.connect_timeout_ms = static_cast<int>(options.timeout_s * 1000);
+    auto tcp = net::TcpClientLink::open(c);  // no reconnect: a lost connection ends the command
     if (!tcp) return tcp.error();
-    link = std::unique_ptr<VehicleLink>(
-        new VehicleLink(std::nullopt, std::move(tcp.value()), options, "over TCP to " + peer->to_string()));
+    link = make(std::move(tcp.value()), "over TCP to " + peer->to_string());
   } else {
     return Error{"--connect: '" + spec + "' is not auto, udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT"};
   }

@@ -17,12 +17,11 @@
 #include <string>
 
 #include "base/common/expected.h"
-#include "base/contract/board_ports.h"
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/frame_parser.h"
 #include "base/mavlink/messages.h"
-#include "engine/net/tcp_client.h"
-#include "engine/net/udp_endpoint.h"
+#include "engine/net/link.h"
+#include "base/contract/board_ports.h"
 
 namespace hitl::vehicle {
 
@@ -69,16 +68,13 @@ class VehicleLink {
   const std::string& description() const { return description_; }
 
  private:
-  VehicleLink(std::optional<net::UdpEndpoint> udp, std::optional<net::TcpClient> tcp, const LinkOptions& options,
-              std::string description);
+  VehicleLink(std::unique_ptr<net::Link> link, const LinkOptions& options, std::string description);
   void send_bytes(std::span<const uint8_t> bytes);
   std::string send_error_;  ///< the first refused send (UDP), said when no answer came
   void heartbeat();
   bool discover(double timeout_s);
 
-  std::optional<net::UdpEndpoint> udp_;
-  std::optional<net::TcpClient> tcp_;  ///< exactly one of the two
-  bool closed_ = false;                ///< the TCP server went away
+  std::unique_ptr<net::Link> link_;  ///< UDP (auto, udp:, udpin:) or TCP (tcp:; a lost connection stays closed)
   mavlink::MessageSet messages_;
   mavlink::FrameParser parser_;
   mavlink::FrameEncoder encoder_;

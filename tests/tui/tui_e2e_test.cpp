@@ -1,13 +1,15 @@
 // `hitl sim --tui` end to end: the emulated board (`hitl target --lockstep`) and the simulator with
 // its dashboard inside a detached tmux session of fixed size (120x40); keys go in with send-keys,
 // the screen comes back with capture-pane. Arm, take off, and see the armed state, the rates and
-// the altitude rising; q quits and the terminal shows the summary.
+// the altitude rising; q quits and the terminal shows the summary. `f` flies the -t file in-process.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <regex>
 #include <thread>
 
@@ -90,6 +92,60 @@ TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
   EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
   EXPECT_NE(s.find("real-time factor"), std::string::npos) << s;  // print_summary's first line
   EXPECT_EQ(s.find("Data paths"), std::string::npos) << s;         // the dashboard is gone
+  board.signal(SIGINT);
+  board.wait(10s);
+}
+
+/// The processes `pid` started (its threads' children), from /proc.
+std::vector<std::string> children_of(const std::string& pid) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/" + pid + "/task", ec)) {
+    std::ifstream in(task.path() / "children");
+    for (std::string child; in >> child;) out.push_back(child);
+  }
+  return out;
+}
+
+// `hitl sim --tui -t FILE`: the trajectory waits for `f`, which flies it in-process (the same flight
+// as `hitl fly trajectory`, no child process) through the session's client port: the pilot's states
+// in the messages panel, the vehicle armed and in the air, and the flight's end pinned in the header.
+TEST(TuiE2E, FKeyFliesTheTrajectoryInProcess) {
+  const std::string tmux_bin = tmux_path();
+  if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port(),
+                 local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+
+  Tmux tmux(tmux_bin, "tui-fly");
+  const std::string trajectory = std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json";
+  const std::string sim = shell_quoted(test::hitl_binary()) + " sim -i 127.0.0.1 --hil-port " + std::to_string(hil) +
+                          " --local-port " + std::to_string(local) + " --no-vio --clients " + std::to_string(clients) +
+                          " --lockstep --speed 5 -t " + shell_quoted(trajectory) + " --tui; echo HITL_EXIT=$?; sleep 60";
+  tmux.start(sim);
+  std::string s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
+  EXPECT_EQ(s.find("ARMED"), std::string::npos) << s;  // -t with --tui waits for the key
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(%\s+ready)")); }, 90s, &s)) << s;
+
+  tmux.keys({"f"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("f: flying") != std::string::npos; }, 10s, &s)) << s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("trajectory: TRAJECTORY") != std::string::npos; }, 90s, &s)) << s;
+  // In-process: the shell in the pane started hitl sim, and hitl sim started nothing.
+  const std::string shell_pid = tmux.run({"display-message", "-p", "-t", "t", "#{pane_pid}"});
+  const auto sims = children_of(shell_pid.substr(0, shell_pid.find_first_of("\r\n")));
+  ASSERT_EQ(sims.size(), 1u) << shell_pid;
+  EXPECT_TRUE(children_of(sims[0]).empty()) << "hitl sim runs a child process while flying";
+
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("trajectory ended: done") != std::string::npos; }, 150s, &s))
+      << s;
+  EXPECT_NE(s.find("DONE; velocity mode; tracking error"), std::string::npos) << s;
+
+  tmux.keys({"q"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
+  EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
   board.signal(SIGINT);
   board.wait(10s);
 }

@@ -48,6 +48,20 @@ TEST(Frames, NoseEastIsYaw90) {
   EXPECT_NEAR(heading_rad(Eigen::Quaterniond::Identity()), kPi / 2, 1e-12);
 }
 
+TEST(Frames, YawEnuFromTheAttitudeAndFromAHeadingAgree) {
+  // Nose east: ENU yaw 0, heading +90 deg; nose north: ENU yaw +90 deg, heading 0; nose west: +-180.
+  EXPECT_NEAR(yaw_ENU_rad(Eigen::Quaterniond::Identity()), 0.0, 1e-12);
+  EXPECT_NEAR(yaw_ENU_from_heading_rad(kPi / 2), 0.0, 1e-12);
+  EXPECT_NEAR(yaw_ENU_from_heading_rad(0.0), kPi / 2, 1e-12);
+  EXPECT_NEAR(std::fabs(yaw_ENU_from_heading_rad(-kPi / 2)), kPi, 1e-12);
+  for (double yaw = -3.0; yaw <= 3.0; yaw += 0.5) {
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX()));
+    EXPECT_NEAR(yaw_ENU_rad(q), yaw, 1e-9);
+    EXPECT_NEAR(yaw_ENU_from_heading_rad(heading_rad(q)), yaw, 1e-9);
+    EXPECT_LE(std::fabs(yaw_ENU_from_heading_rad(heading_rad(q))), kPi);
+  }
+}
+
 TEST(Frames, NoseUpIsPositivePitch) {
   // Facing north, nose raised 10 deg: in FLU that is a rotation about -y (left axis).
   const Eigen::Quaterniond q_FLU_to_ENU = about_z(kPi / 2) * about_y(-10.0 * kPi / 180);

@@ -14,6 +14,8 @@
 #include "engine/vehicle/shell_client.h"
 #include "engine/vehicle/shell_poller.h"
 #include "tests/support/mavlink_peer.h"
+#include "tests/support/board_link.h"
+#include "tests/support/scripted_board.h"
 
 namespace hitl::vehicle {
 namespace {
@@ -21,51 +23,8 @@ namespace {
 namespace msg = mavlink::msg;
 using namespace std::chrono_literals;
 
-/// A scripted autopilot: HEARTBEAT every 100 ms, and `script` answers each frame it receives.
-class ScriptedBoard {
- public:
-  using Script = std::function<void(const mavlink::Frame&, test::MavlinkPeer&)>;
-  explicit ScriptedBoard(Script script) : peer_(0, 0, 1, 1), script_(std::move(script)) {
-    thread_ = std::thread([this] {
-      auto set = mavlink::MessageSet::compiled();
-      mavlink::FrameParser parser(set);
-      auto next_hb = std::chrono::steady_clock::now();
-      while (running_) {
-        if (std::chrono::steady_clock::now() >= next_hb && peer_.endpoint().partner()) {
-          msg::Heartbeat hb;
-          hb.type = 2;
-          hb.autopilot = 12;
-          peer_.send(hb);
-          next_hb += 100ms;
-        }
-        if (!peer_.endpoint().wait_readable(10)) continue;
-        while (auto d = peer_.endpoint().receive())
-          parser.parse_datagram(d->bytes, [&](const mavlink::Frame& f) { script_(f, peer_); });
-      }
-    });
-  }
-  ~ScriptedBoard() {
-    running_ = false;
-    thread_.join();
-  }
-  uint16_t port() { return peer_.endpoint().local_address().port(); }
-
- private:
-  test::MavlinkPeer peer_;
-  Script script_;
-  std::atomic<bool> running_{true};
-  std::thread thread_;
-};
-
-std::unique_ptr<VehicleLink> connect_to(uint16_t port) {
-  LinkOptions o;
-  o.connect = "udp:127.0.0.1:" + std::to_string(port);
-  o.local_port = 0;
-  o.timeout_s = 3;
-  auto link = VehicleLink::connect(o);
-  EXPECT_TRUE(link.ok()) << link.error().message;
-  return std::move(link.value());
-}
+using test::ScriptedBoard;
+using test::connect_to;
 
 TEST(CommandClient, RetransmitsAfterALossAndWaitsThroughInProgress) {
   std::atomic<int> seen{0};

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <thread>
 
+#include "engine/net/udp_endpoint.h"
 #include "engine/vehicle/patient_link.h"
 #include "tests/support/process.h"
 

@@ -1,0 +1,172 @@
+// The session's tick (docs/architecture.md "The session"): one step of simulated time, in the
+// design's order. Runs on the one thread that owns time.
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "base/common/clock.h"
+#include "engine/hil/sensor_messages.h"
+#include "engine/hil/session_impl.h"
+#include "engine/frames/frames.h"
+#include "engine/hil/snapshot_builder.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/heartbeat.h"
+#include "base/mavlink/wire_units.h"
+#include "engine/telemetry/health.h"
+
+namespace hitl::hil {
+
+Status Session::Impl::step(EventSink& events) {
+  // Drain: the flight stack's link and the client port; then what clients are owed this step.
+  const double now_s = monotonic_s();
+  drain(now_s);
+  services->send_status(now_s, start_wall_s, status(now_s));
+  services->serve(events);
+  say_record_failure(events);
+  if (take_controls(events)) return Ok{};  // paused: the model holds, nothing is sent
+  // Lockstep wait for the answer to the last HIL_SENSOR (a step shorter than the IMU period sends
+  // none every step, and none is owed right after a pause).
+  if (!std::exchange(resumed, false) && std::exchange(sensor_sent, false))
+    stack->lockstep_wait(events, [&] { drain(monotonic_s()); });
+  // Actuator commands, physics step.
+  model->set_motor_commands(stack->actuators().commands(clock.unpaused_s(monotonic_s())));
+  if (auto st = model->step(); !st) return st;
+  const auto& state = model->state();
+  touchdowns.observe(state);
+  // Sensors due at this time.
+  const auto frame = sensors->sample_due(state);
+  say_imu_saturated(events);
+  // Messages, flushed as one datagram to the flight stack; then VIO and truth.
+  const double sent_s = monotonic_s();
+  const uint64_t t_us = mavlink::wire::s_to_us(sim_time_s());
+  send_messages(frame, t_us, sent_s, events);
+  stack->flush();
+  stack->actuators().take_new();  // answers counted from here on belong to these sensors
+  if (services->send_vio_if_due(frame.truth, t_us, sim_time_s())) paths->on_odometry(sent_s);
+  services->send_truth_if_due(frame.truth, t_us, sim_time_s());
+  say_send_errors(events);
+  stack->check_answered(events);
+  return Ok{};  // the run loop publishes the snapshot
+}
+
+void Session::Impl::drain(double now_s) {
+  stack->drain(now_s, [&](const mavlink::Frame& f, double t_s) {
+    paths->on_stack_frame(f, t_s);
+    if (pilot) pilot->on_board_frame(f);
+    services->route_from_stack(f, t_s);
+  });
+  services->drain(now_s);
+}
+
+void Session::Impl::send_messages(const sensors::SensorFrame& frame, uint64_t t_us, double sent_s, EventSink& events) {
+  if (frame.imu || frame.mag || frame.baro) {
+    stack->send(make_hil_sensor(frame, t_us));
+    sensor_sent = true;
+    if (stack->lockstep() && frame.imu) stack->actuators().expect_answer_to(t_us);
+    paths->on_hil_sensor(frame.imu.has_value(), frame.mag.has_value(), frame.baro.has_value(), sent_s);
+    stack->on_hil_sensor_sent(monotonic_s());
+  }
+  if (frame.gps) {
+    stack->send(make_hil_gps(*frame.gps, t_us));
+    paths->on_hil_gps(sent_s);
+  }
+  if (pilot) fly_pilot(model->state(), events);
+  if (sim_time_s() + 1e-9 >= next_heartbeat_s) {
+    next_heartbeat_s += 1.0;
+    stack->send(mavlink::simulator_heartbeat());
+  }
+}
+
+void Session::Impl::fly_pilot(const model::VehicleState& state, EventSink& events) {
+  // -t: the trajectory flight flies on ground truth, as the spec's trajectory_rc plugin does, and is
+  // scored on it.
+  const vehicle::PilotPose truth{{state.p_ENU_m.x(), state.p_ENU_m.y(), state.p_ENU_m.z()},
+                                 {state.v_ENU_m_s.x(), state.v_ENU_m_s.y(), state.v_ENU_m_s.z()},
+                                 frames::yaw_ENU_rad(state.q_FLU_to_ENU)};
+  auto out = pilot->step(time_offset_s + state.time_s, truth, truth);
+  mavlink::FrameBuffer buf;
+  for (const auto& c : out.commands) stack->forward({buf.data(), pilot_encoder.encode(c, buf)});
+  if (out.rc) stack->forward({buf.data(), pilot_encoder.encode(*out.rc, buf)});
+  if (out.event) events.on_event({pilot->state() == vehicle::PilotState::Failed ? Severity::Error : Severity::Info, *out.event});
+}
+
+bool Session::Impl::take_controls(EventSink& events) {
+  if (const bool want = pause_wanted.load(); want != clock.paused()) {
+    char text[96];
+    if (want) {
+      clock.pause(monotonic_s());
+      std::snprintf(text, sizeof text, "paused at %.1f s: the model holds, no sensor data is sent", sim_time_s());
+    } else {
+      clock.resume(monotonic_s());
+      resumed = true;
+      std::snprintf(text, sizeof text, "resumed at %.1f s", sim_time_s());
+    }
+    events.on_event({Severity::Info, text});
+  }
+  if (reset_wanted.exchange(false)) {
+    time_offset_s += model->state().time_s;  // the wire's clock carries on
+    model->reset();
+    sensors->reset();
+    touchdowns.on_reset();
+    ++resets;
+    char text[96];
+    std::snprintf(text, sizeof text, "reset to home at rest, motors stopped (time carries on at %.1f s)", sim_time_s());
+    events.on_event({Severity::Info, text});
+  }
+  return clock.paused();
+}
+
+void Session::Impl::say_record_failure(EventSink& events) {
+  if (auto text = recording.take_failure(); !text.empty()) events.on_event({Severity::Error, text});
+}
+
+void Session::Impl::say_send_errors(EventSink& events) {
+  for (const auto& text : stack->take_send_errors()) events.on_event({Severity::Error, text});
+  for (const auto& text : services->take_send_errors()) events.on_event({Severity::Error, text});
+}
+
+void Session::Impl::say_imu_saturated(EventSink& events) {
+  const auto& saturation = sensors->imu().saturation();
+  if (warned_imu_saturated || (saturation.accel == 0 && saturation.gyro == 0)) return;
+  warned_imu_saturated = true;
+  const auto& imu = config.vehicle.sensors.imu;
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "IMU at full scale (accel +-%.1f g, gyro +-%.0f deg/s, sensors.imu.*_range): a sample was clipped at "
+                "t = %.2f s, as the real sensor would; counted (imu_saturated)",
+                imu.accel_range_m_s2 / 9.80665, imu.gyro_range_rad_s * 180.0 / M_PI, sim_time_s());
+  events.on_event({Severity::Warning, text});
+}
+
+SessionStatus Session::Impl::status(double now_s) const {
+  SessionStatus s;
+  s.paused = clock.paused();
+  s.recent_real_time_factor = recent_rtf;
+  s.late_ticks = pacer->stats().late;
+  for (const auto& p : paths->stats(now_s))
+    if (!p.outgoing && p.stats.since_last_s >= 0 && p.stats.since_last_s < telemetry::kStaleAfter_s)
+      s.actuator_rate_hz = p.stats.rate_hz;
+  return s;
+}
+
+void Session::Impl::publish() {
+  const double now_s = monotonic_s();
+  auto s = make_snapshot({config, messages, model->state(), rest_altitude_m, sim_time_s(), now_s - start_wall_s,
+                          recent_rtf, traffic, *stack, *services, pacer->stats(), *sensors, touchdowns,
+                          pilot ? &*pilot : nullptr, paths->stats(now_s), clock.paused(), resets, recording.error()});
+  std::lock_guard<std::mutex> lock(snapshot_mutex);
+  published = std::move(s);
+}
+
+void Session::Impl::roll_window() {
+  const double now = monotonic_s();
+  const double dt = now - window_start_wall_s;
+  if (dt <= 0) return;
+  traffic.roll(dt);
+  recent_rtf = (sim_time_s() - window_start_sim_s) / dt;
+  paths->roll(now, config.speed > 0 ? config.speed : recent_rtf);
+  window_start_wall_s = now;
+  window_start_sim_s = sim_time_s();
+}
+
+}  // namespace hitl::hil

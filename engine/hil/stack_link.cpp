@@ -1,0 +1,228 @@
+#include "engine/hil/stack_link.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "base/common/clock.h"
+#include "base/mavlink/messages.h"
+#include "engine/net/tcp_links.h"
+#include "engine/net/udp_link.h"
+
+namespace hitl::hil {
+
+bool is_hil_message(uint32_t msgid) {
+  return msgid == mavlink::msg::HilSensor::kId || msgid == mavlink::msg::HilGps::kId ||
+         msgid == mavlink::msg::HilActuatorControls::kId || msgid == mavlink::msg::HilStateQuaternion::kId;
+}
+
+Expected<std::unique_ptr<StackLink>> StackLink::open(const SessionConfig& config, const mavlink::MessageSet& messages,
+                                                     Traffic& traffic, Recording& recording, const PauseClock& clock) {
+  std::unique_ptr<net::Link> link;
+  if (config.link == FlightStackLink::SitlTcp) {
+    auto server = net::TcpServerLink::listen(config.bind_address, config.sitl_port, "--px4-sitl");
+    if (!server) return server.error();
+    link = std::move(server.value());
+  } else {
+    const uint16_t remote = config.link == FlightStackLink::SitlUdp ? config.sitl_port : config.hil_port;
+    auto target = net::SocketAddress::resolve(config.target_ip, remote);
+    if (!target) return Error{"--target-ip: " + target.error().message};
+    net::UdpLink::Config c;
+    c.endpoint.name = "HIL link (--local-port)";
+    c.endpoint.bind_address = config.bind_address;
+    c.endpoint.bind_port = config.local_port;
+    c.endpoint.peer = *target;
+    c.endpoint.policy = net::PartnerPolicy::Fixed;
+    c.hear_peer_only = true;  // PX4 answers from its own port; anything else is not our board
+    auto udp = net::UdpLink::open(c);
+    if (!udp) return udp.error();
+    link = std::move(udp.value());
+  }
+  return std::unique_ptr<StackLink>(new StackLink(config, std::move(link), messages, traffic, recording, clock));
+}
+
+StackLink::StackLink(const SessionConfig& config, std::unique_ptr<net::Link> link, const mavlink::MessageSet& messages,
+                     Traffic& traffic, Recording& recording, const PauseClock& clock)
+    : config_(config),
+      link_(std::move(link)),
+      encoder_(config.sysid, config.compid, config.protocol),
+      parser_(messages),
+      traffic_(traffic),
+      recording_(recording),
+      clock_(clock),
+      actuators_(config.actuator_timeout_s) {}
+
+bool StackLink::wait_for_sitl(const std::atomic<bool>& stop, EventSink& events) {
+  const std::string local = link_->local_address() ? link_->local_address()->to_string() : "?";
+  events.on_event({Severity::Info, "waiting for PX4 SITL to connect to TCP " + local +
+                                       "; start PX4 now, in its build tree: PX4_SYS_AUTOSTART=10016 "
+                                       "PX4_SIM_MODEL=none_iris build/px4_sitl_default/bin/px4 (docs/sim.md adds the "
+                                       "x500 geometry as PX4_PARAM_ variables)"});
+  const double wait_start_s = monotonic_s();
+  double next_note_s = wait_start_s + 10.0;
+  while (!link_->wait_connected(200)) {
+    if (stop.load()) return false;
+    if (monotonic_s() >= next_note_s) {
+      next_note_s += 10.0;
+      events.on_event({Severity::Info, "still waiting for PX4 SITL on TCP " + std::to_string(link_->local_address()->port()) +
+                                           " (" + std::to_string(static_cast<int>(monotonic_s() - wait_start_s)) + " s)"});
+    }
+  }
+  events.on_event({Severity::Info, "PX4 SITL connected from " + link_->peer()->to_string()});
+  return true;
+}
+
+void StackLink::queue(std::span<const uint8_t> bytes, std::optional<uint32_t> counted_id) {
+  recording_.record(bytes);
+  if (!link_->has_room_for(bytes.size())) flush();  // a full datagram is sent first (and its messages counted)
+  link_->queue(bytes);
+  if (counted_id) ++batch_[*counted_id];  // counted as sent when its datagram is
+}
+
+void StackLink::forward(std::span<const uint8_t> bytes) {
+  queue(bytes, std::nullopt);
+  ++routed_to_board_;
+}
+
+void StackLink::flush() {
+  if (!link_->connected()) {  // PX4 SITL not (or no longer) connected: nothing leaves, nothing is counted
+    (void)link_->flush();
+    batch_.clear();
+    return;
+  }
+  const auto st = link_->flush();
+  for (const auto& [id, n] : batch_) {
+    if (st) traffic_.count_sent(id, n);
+    else if (!link_->closed()) traffic_.count_failed(n, st.error().message);  // a lost stream is gone(), not a send error
+  }
+  batch_.clear();
+}
+
+void StackLink::drain(double now_s, const FrameHandler& on_frame) {
+  link_->drain(
+      parser_,
+      [&](const mavlink::Frame& f) {
+        recording_.record(f.bytes());
+        traffic_.count_received(f.msgid);
+        on_frame(f, now_s);
+        if (f.is<mavlink::msg::HilActuatorControls>())
+          actuators_.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, clock_.unpaused_s(now_s));
+      },
+      kMaxDatagramsPerDrain);
+}
+
+void StackLink::on_hil_sensor_sent(double wall_s) {
+  if (first_sensor_wall_s_ < 0) first_sensor_wall_s_ = wall_s;
+}
+
+std::string StackLink::peer_text() const {
+  return link_->peer() ? link_->peer()->to_string() : std::string("the flight stack");
+}
+
+std::string StackLink::describe() const {
+  const std::string local = link_->local_address() ? link_->local_address()->to_string() : "?";
+  if (config_.link == FlightStackLink::SitlTcp) return "serving PX4 SITL on TCP " + local + " (lockstep)";
+  return "HIL_SENSOR/HIL_GPS to " + peer_text() + " from " + local + (config_.lockstep ? " (lockstep)" : "");
+}
+
+// --- lockstep --------------------------------------------------------------------------------
+
+void StackLink::lockstep_wait(EventSink& events, const std::function<void()>& drain_all) {
+  if (!lockstep() || !actuators_.ever_received()) return;  // PX4 sends nothing during its first ~1.1 s
+  if (stalled_) {
+    // After a wait ran out, step on at the pace (bounded wall time) until the board is heard again.
+    if (actuators_.take_heard() == 0) return;
+    stalled_ = false;
+    events.on_event({Severity::Info, "lockstep: the flight stack answers again; waiting for each answer again"});
+  }
+  ++lockstep_counters_.waits;
+  const double deadline = monotonic_s() + config_.lockstep_timeout_s;
+  while (actuators_.take_new() == 0 && !gone()) {
+    const double left_s = deadline - monotonic_s();
+    if (left_s <= 0 || !link_->wait_readable(static_cast<int>(std::ceil(left_s * 1000)))) {
+      if (monotonic_s() < deadline) continue;
+      ++lockstep_counters_.fallbacks;
+      stalled_ = true;
+      actuators_.take_heard();
+      if (!warned_lockstep_) {
+        warned_lockstep_ = true;
+        events.on_event({Severity::Warning, "lockstep: no HIL_ACTUATOR_CONTROLS within " +
+                                                std::to_string(static_cast<int>(config_.lockstep_timeout_s * 1000)) +
+                                                " ms of the last HIL_SENSOR; stepping on without waiting until it "
+                                                "answers again (counted)"});
+      }
+      return;
+    }
+    drain_all();
+  }
+}
+
+bool StackLink::lockstep_dead(EventSink& events) {
+  if (!lockstep() || config_.link == FlightStackLink::SitlTcp || !actuators_.last_heard_s()) return false;
+  const double silent_s = clock_.unpaused_s(monotonic_s()) - *actuators_.last_heard_s();
+  if (silent_s < kLockstepGiveUp_s) return false;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "lockstep: no HIL_ACTUATOR_CONTROLS from %s for %.0f s; ending the session. The flight stack "
+                "stopped answering: restart it, then hitl sim (hitl target --lockstep: restart it or check it is "
+                "still running; a PX4 board: restart PX4 on it, voxl-px4-hitl start)",
+                peer_text().c_str(), silent_s);
+  events.on_event({Severity::Error, text});
+  return true;
+}
+
+void StackLink::check_clock_ahead(EventSink& events) {
+  if (warned_clock_ahead_ || !lockstep() || !actuators_.ever_received()) return;
+  const int64_t offset_us = actuators_.last_echo_offset_us();
+  char text[512];
+  if (sitl() && offset_us >= static_cast<int64_t>(ActuatorInput::kEchoWindow_us)) {
+    std::snprintf(text, sizeof text,
+                  "lockstep: PX4 SITL's answers are stamped %.1f s ahead of this session's clock: it still runs on "
+                  "an earlier session's time and cannot go back, so it will not take these sensors as new. Restart "
+                  "PX4 SITL together with hitl sim",
+                  static_cast<double>(offset_us) * 1e-6);
+    events.on_event({Severity::Warning, text});
+  } else if (!sitl() && actuators_.counters().foreign_clock >= 10) {
+    std::snprintf(text, sizeof text,
+                  "lockstep: the board stamps its answers with its own clock, not the HIL_SENSOR's time_usec (a "
+                  "PX4 board in HIL mode does; hitl target --lockstep echoes it): each answer counts, late ones "
+                  "cannot be told apart");
+    events.on_event({Severity::Info, text});
+  } else {
+    return;
+  }
+  warned_clock_ahead_ = true;
+}
+
+// --- no answer -------------------------------------------------------------------------------
+
+void StackLink::check_answered(EventSink& events) {
+  if (warned_no_answer_ || first_sensor_wall_s_ < 0 || actuators_.ever_received() ||
+      monotonic_s() - first_sensor_wall_s_ <= config_.no_answer_warning_s)
+    return;
+  warned_no_answer_ = true;
+  events.on_event({Severity::Warning, no_answer_text()});
+}
+
+std::string StackLink::no_answer_text() const {
+  const uint64_t errors = traffic_.send_errors;
+  if (errors > 0 && traffic_.delivered() == 0)
+    return "no HIL_ACTUATOR_CONTROLS: nothing reached the flight stack, every send failed (" + std::to_string(errors) +
+           " messages; " + traffic_.last_send_error + ")";
+  if (errors > 0)
+    return no_answer_cause() + "; and " + std::to_string(errors) + " messages could not be sent (" +
+           traffic_.last_send_error + ")";
+  return no_answer_cause();
+}
+
+std::string StackLink::no_answer_cause() const {
+  if (sitl())
+    return "no HIL_ACTUATOR_CONTROLS from PX4 SITL yet; still sending. Is PX4 started with a simulator "
+           "airframe (e.g. 10016 none_iris)?";
+  return "no HIL_ACTUATOR_CONTROLS from " + peer_text() + " within " +
+         std::to_string(static_cast<int>(config_.no_answer_warning_s)) +
+         " s of the first HIL_SENSOR; still sending. Likely causes: the board's HIL instance is locked to an "
+         "earlier session's port (restart PX4 on the board: voxl-px4-hitl start), HIL is not enabled (SYS_HITL must "
+         "be 1), or the wrong IP (-i)";
+}
+
+}  // namespace hitl::hil

@@ -1,0 +1,117 @@
+// The session's side of the flight stack: the board over UDP (heard only from the target's
+// address), or PX4 SITL's simulator link over TCP (PX4 connects). It owns the net::Link, the HIL
+// link's encoder and parser, the actuator input the answers feed, and lockstep: waiting for the
+// answer to each HIL_SENSOR, stepping on after a timeout, giving up on a stack silent for
+// kLockstepGiveUp_s, and saying when the answers run on another clock (docs/sim.md "Time").
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "base/common/expected.h"
+#include "engine/hil/actuator_input.h"
+#include "engine/hil/pause_clock.h"
+#include "engine/hil/recording.h"
+#include "engine/hil/session_config.h"
+#include "engine/hil/session_events.h"
+#include "engine/hil/traffic.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "engine/net/link.h"
+
+namespace hitl::hil {
+
+/// Messages the session itself exchanges with the flight stack; never routed to or from clients.
+bool is_hil_message(uint32_t msgid);
+
+struct LockstepCounters {
+  uint64_t waits = 0;
+  uint64_t fallbacks = 0;
+};
+
+class StackLink {
+ public:
+  /// Any frame from the flight stack other than the actuator answers' bookkeeping (they come too).
+  using FrameHandler = std::function<void(const mavlink::Frame&, double now_s)>;
+
+  /// Opens the board's UDP link or listens for PX4 SITL; a port in use or a bad address is an Error.
+  static Expected<std::unique_ptr<StackLink>> open(const SessionConfig& config, const mavlink::MessageSet& messages,
+                                                         Traffic& traffic, Recording& recording, const PauseClock& clock);
+
+  /// PX4 SITL: waits for it to connect (saying how, and every 10 s how long); false when stopped.
+  bool wait_for_sitl(const std::atomic<bool>& stop, EventSink& events);
+
+  // --- sending: queued into one datagram (or one TCP write) per step, sent by flush() ---------
+  template <class M>
+  void send(const M& message) {
+    mavlink::FrameBuffer buf;
+    if (const std::size_t n = encoder_.encode(message, buf)) queue({buf.data(), n}, M::kId);
+  }
+  /// A frame from elsewhere (a client, the trajectory pilot) to the flight stack.
+  void forward(std::span<const uint8_t> bytes);
+  void flush();
+  /// Each destination's first refused send, in words, once.
+  std::vector<std::string> take_send_errors() { return link_->take_send_errors(); }
+
+  // --- receiving -------------------------------------------------------------------------------
+  /// Reads what arrived (at most kMaxDatagramsPerDrain datagrams): actuator answers into
+  /// actuators(), every frame to `on_frame`.
+  void drain(double now_s, const FrameHandler& on_frame);
+
+  // --- lockstep ------------------------------------------------------------------------------
+  bool lockstep() const { return config_.lockstep || sitl(); }
+  /// Waits for the answer to the HIL_SENSOR just sent, calling `drain_all` as data arrives.
+  void lockstep_wait(EventSink& events, const std::function<void()>& drain_all);
+  /// Lockstep against a stack silent for kLockstepGiveUp_s: true (said once) when the session should end.
+  bool lockstep_dead(EventSink& events);
+  /// Answers on another clock than this session's, said once.
+  void check_clock_ahead(EventSink& events);
+  /// Nothing back within no_answer_warning_s of the first HIL_SENSOR: said once, with the causes.
+  void check_answered(EventSink& events);
+  void on_hil_sensor_sent(double wall_s);
+
+  /// PX4 SITL went away (it never reconnects).
+  bool gone() const { return link_->closed(); }
+  bool sitl() const { return config_.link == FlightStackLink::SitlTcp || config_.link == FlightStackLink::SitlUdp; }
+  ActuatorInput& actuators() { return actuators_; }
+  const ActuatorInput& actuators() const { return actuators_; }
+  const net::Link& link() const { return *link_; }
+  const mavlink::ParserStats& parser_stats() const { return parser_.stats(); }
+  const LockstepCounters& lockstep_counters() const { return lockstep_counters_; }
+  uint64_t routed_to_board() const { return routed_to_board_; }
+  /// "HIL_SENSOR/HIL_GPS to 192.168.101.2:14560 from 0.0.0.0:14561" / "serving PX4 SITL on TCP ..."
+  std::string describe() const;
+
+  static constexpr std::size_t kMaxDatagramsPerDrain = 256;
+
+ private:
+  StackLink(const SessionConfig& config, std::unique_ptr<net::Link> link, const mavlink::MessageSet& messages,
+                  Traffic& traffic, Recording& recording, const PauseClock& clock);
+  void queue(std::span<const uint8_t> bytes, std::optional<uint32_t> counted_id);
+  std::string no_answer_text() const;
+  std::string no_answer_cause() const;
+  std::string peer_text() const;
+
+  const SessionConfig& config_;
+  std::unique_ptr<net::Link> link_;
+  mavlink::FrameEncoder encoder_;  ///< the HIL link's sequence
+  mavlink::FrameParser parser_;
+  Traffic& traffic_;
+  Recording& recording_;
+  const PauseClock& clock_;
+  ActuatorInput actuators_;
+  std::map<uint32_t, uint64_t> batch_;  ///< messages in what flush() sends: counted as sent once it is
+  LockstepCounters lockstep_counters_;
+  uint64_t routed_to_board_ = 0;
+  bool stalled_ = false;  ///< a wait ran out: step on without waiting until the stack is heard again
+  bool warned_lockstep_ = false;
+  bool warned_clock_ahead_ = false;
+  bool warned_no_answer_ = false;
+  double first_sensor_wall_s_ = -1;
+};
+
+}  // namespace hitl::hil

@@ -1,0 +1,231 @@
+// The one link interface (engine/net/link.h) over loopback: UDP with a fixed peer, udpin learning
+// its partner, hearing the peer only, send errors counted; TCP client and server carrying a stream;
+// the TCP client's reconnects and what it says.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "base/common/clock.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/messages.h"
+#include "engine/net/link.h"
+#include "engine/net/tcp_links.h"
+#include "engine/net/udp_link.h"
+
+namespace hitl::net {
+namespace {
+
+std::unique_ptr<UdpLink> udp(uint16_t port, PartnerPolicy policy, std::optional<SocketAddress> peer = std::nullopt,
+                             bool hear_peer_only = false, const std::string& bind = "127.0.0.1") {
+  UdpLink::Config c;
+  c.endpoint.bind_address = bind;
+  c.endpoint.bind_port = port;
+  c.endpoint.policy = policy;
+  c.endpoint.peer = peer;
+  c.endpoint.name = "test link";
+  c.hear_peer_only = hear_peer_only;
+  auto link = UdpLink::open(c);
+  EXPECT_TRUE(link.ok()) << link.error().message;
+  return std::move(link.value());
+}
+
+/// A HEARTBEAT frame from `encoder`'s system (sysid_hint only documents which).
+std::vector<uint8_t> heartbeat_frame(uint8_t /*sysid_hint*/, mavlink::FrameEncoder& encoder) {
+  mavlink::msg::Heartbeat hb;
+  hb.autopilot = 12;
+  mavlink::FrameBuffer buf;
+  const std::size_t n = encoder.encode(hb, buf);
+  return {buf.data(), buf.data() + n};
+}
+
+/// Drains `link` for up to timeout_s until `want` frames were parsed.
+std::vector<uint8_t> sysids_heard(Link& link, std::size_t want, double timeout_s = 2.0) {
+  static const auto messages = mavlink::MessageSet::compiled();
+  mavlink::FrameParser parser(messages);
+  std::vector<uint8_t> sysids;
+  const double end = monotonic_s() + timeout_s;
+  while (sysids.size() < want && monotonic_s() < end) {
+    if (!link.wait_readable(50)) continue;
+    link.drain(parser, [&](const mavlink::Frame& f) { sysids.push_back(f.sysid); });
+  }
+  return sysids;
+}
+
+TEST(UdpLink, FixedPeerCarriesQueuedFramesAsOneDatagram) {
+  auto board = udp(0, PartnerPolicy::LastSender);
+  auto sim = udp(0, PartnerPolicy::Fixed, board->local_address());
+  mavlink::FrameEncoder e1(1, 1), e2(2, 1);
+  const auto f1 = heartbeat_frame(1, e1), f2 = heartbeat_frame(2, e2);
+  ASSERT_TRUE(sim->has_room_for(f1.size()));
+  sim->queue(f1);
+  sim->queue(f2);
+  EXPECT_EQ(sim->queued_bytes(), f1.size() + f2.size());
+  ASSERT_TRUE(sim->flush().ok());
+  EXPECT_EQ(sim->queued_bytes(), 0u);
+  EXPECT_EQ(sim->stats().datagrams_out, 1u);  // two frames, one datagram
+  EXPECT_EQ(sysids_heard(*board, 2), (std::vector<uint8_t>{1, 2}));
+  EXPECT_EQ(board->stats().datagrams_in, 1u);
+  // The listener learnt its partner from what it heard, and answers it.
+  ASSERT_TRUE(board->peer());
+  EXPECT_EQ(*board->peer(), *sim->local_address());
+  ASSERT_TRUE(board->send(heartbeat_frame(3, e1)).ok());
+  EXPECT_EQ(sysids_heard(*sim, 1).size(), 1u);
+}
+
+TEST(UdpLink, HasNoRoomBeyondOneDatagram) {
+  auto sim = udp(0, PartnerPolicy::Fixed, SocketAddress::resolve("127.0.0.1", 9).value());
+  const std::vector<uint8_t> big(1000, 0xAA);
+  EXPECT_TRUE(sim->has_room_for(big.size()));  // an empty batch takes anything
+  sim->queue(big);
+  EXPECT_TRUE(sim->has_room_for(UdpEndpoint::kMaxDatagram - big.size()));
+  EXPECT_FALSE(sim->has_room_for(UdpEndpoint::kMaxDatagram - big.size() + 1));
+}
+
+TEST(UdpLink, HearsItsPeerOnlyAndCountsTheRest) {
+  auto board = udp(0, PartnerPolicy::LastSender);
+  auto sim = udp(0, PartnerPolicy::Fixed, board->local_address(), /*hear_peer_only=*/true);
+  auto stranger = udp(0, PartnerPolicy::Fixed, sim->local_address());
+  mavlink::FrameEncoder e_sim(250, 1), e_board(1, 1), e_stranger(66, 1);
+  ASSERT_TRUE(sim->send(heartbeat_frame(250, e_sim)).ok());
+  ASSERT_EQ(sysids_heard(*board, 1).size(), 1u);  // the board learns the simulator
+  ASSERT_TRUE(stranger->send(heartbeat_frame(66, e_stranger)).ok());
+  ASSERT_TRUE(board->send(heartbeat_frame(1, e_board)).ok());
+  const auto heard = sysids_heard(*sim, 1);
+  ASSERT_EQ(heard, (std::vector<uint8_t>{1}));
+  // The stranger's datagram may be read in the same drain or the next: drain until it was counted.
+  const double end = monotonic_s() + 1.0;
+  while (sim->stats().ignored_other_address == 0 && monotonic_s() < end) (void)sysids_heard(*sim, 1, 0.05);
+  EXPECT_EQ(sim->stats().ignored_other_address, 1u);
+}
+
+TEST(UdpLink, CountsRefusedSendsAndSaysTheFirstOnce) {
+  // A socket bound to loopback cannot reach another address: the kernel refuses (EINVAL).
+  auto sim = udp(0, PartnerPolicy::Fixed, SocketAddress::resolve("192.0.2.1", 14560).value());
+  mavlink::FrameEncoder e(250, 1);
+  sim->queue(heartbeat_frame(250, e));
+  EXPECT_FALSE(sim->flush().ok());
+  EXPECT_FALSE(sim->send(heartbeat_frame(250, e)).ok());
+  EXPECT_EQ(sim->stats().send_errors, 2u);
+  EXPECT_EQ(sim->stats().datagrams_out, 0u);  // never counted as sent
+  EXPECT_NE(sim->stats().last_send_errno, 0);
+  const auto said = sim->take_send_errors();
+  ASSERT_EQ(said.size(), 1u);  // the first refusal per destination, once
+  EXPECT_NE(said[0].find("192.0.2.1:14560"), std::string::npos) << said[0];
+  EXPECT_TRUE(sim->take_send_errors().empty());
+}
+
+TEST(TcpLinks, ServerAndClientCarryAByteStream) {
+  auto server = TcpServerLink::listen("127.0.0.1", 0, "--px4-sitl");
+  ASSERT_TRUE(server.ok()) << server.error().message;
+  auto& s = *server.value();
+  EXPECT_FALSE(s.connected());
+  EXPECT_FALSE(s.wait_connected(10));  // nobody yet
+  TcpClientLink::Config c;
+  c.server = *s.local_address();
+  c.name = "--connect";
+  auto client = TcpClientLink::open(c);
+  ASSERT_TRUE(client.ok()) << client.error().message;
+  auto& cl = *client.value();
+  ASSERT_TRUE(s.wait_connected(1000));
+  EXPECT_TRUE(s.peer().has_value());
+  EXPECT_EQ(s.stats().connects, 1u);
+  // A frame split over two writes is parsed whole: the stream is fed, not taken as datagrams.
+  mavlink::FrameEncoder e(1, 1);
+  const auto f = heartbeat_frame(1, e);
+  ASSERT_TRUE(cl.send(std::span<const uint8_t>(f).first(5)).ok());
+  ASSERT_TRUE(cl.send(std::span<const uint8_t>(f).subspan(5)).ok());
+  EXPECT_EQ(sysids_heard(s, 1), (std::vector<uint8_t>{1}));
+  // Queued frames go out in one write.
+  s.queue(heartbeat_frame(2, e));
+  s.queue(heartbeat_frame(3, e));
+  ASSERT_TRUE(s.flush().ok());
+  EXPECT_EQ(s.stats().datagrams_out, 1u);
+  EXPECT_EQ(sysids_heard(cl, 2).size(), 2u);
+  // The client goes: the server's link is closed for good (PX4 never reconnects).
+  client.value().reset();
+  const double end = monotonic_s() + 2.0;
+  while (!s.closed() && monotonic_s() < end) (void)sysids_heard(s, 1, 0.05);
+  EXPECT_TRUE(s.closed());
+  EXPECT_FALSE(s.connected());
+}
+
+TEST(TcpLinks, ClientWithoutReconnectFailsAtOpenAndStaysClosedAfterALoss) {
+  uint16_t port = 0;
+  {
+    auto server = TcpServerLink::listen("127.0.0.1", 0, "probe");
+    ASSERT_TRUE(server.ok());
+    port = server.value()->local_address()->port();
+  }  // closed: nothing listens there now
+  TcpClientLink::Config c;
+  c.server = SocketAddress::resolve("127.0.0.1", port).value();
+  c.name = "--connect";
+  auto client = TcpClientLink::open(c);
+  ASSERT_FALSE(client.ok());
+  EXPECT_NE(client.error().message.find("--connect: cannot connect to TCP"), std::string::npos) << client.error().message;
+
+  auto server = TcpServerLink::listen("127.0.0.1", 0, "server");
+  ASSERT_TRUE(server.ok());
+  c.server = *server.value()->local_address();
+  auto ok = TcpClientLink::open(c);
+  ASSERT_TRUE(ok.ok());
+  ASSERT_TRUE(server.value()->wait_connected(1000));
+  server.value().reset();  // the server goes away
+  auto& cl = *ok.value();
+  const double end = monotonic_s() + 2.0;
+  while (cl.connected() && monotonic_s() < end) (void)sysids_heard(cl, 1, 0.05);
+  EXPECT_FALSE(cl.connected());
+  EXPECT_TRUE(cl.closed());
+  cl.maintain(monotonic_s() + 100);  // no reconnect asked for: stays down
+  EXPECT_FALSE(cl.connected());
+  EXPECT_TRUE(cl.take_events().empty());
+}
+
+TEST(TcpLinks, ClientReconnectsSayingSoAndSaysAFailedAttemptOnce) {
+  auto probe = TcpServerLink::listen("127.0.0.1", 0, "probe");
+  ASSERT_TRUE(probe.ok());
+  const uint16_t port = probe.value()->local_address()->port();
+  probe.value().reset();
+
+  TcpClientLink::Config c;
+  c.server = SocketAddress::resolve("127.0.0.1", port).value();
+  c.name = "--endpoint tcp:127.0.0.1:" + std::to_string(port);
+  c.reconnect_period_s = 2.0;
+  auto opened = TcpClientLink::open(c);
+  ASSERT_TRUE(opened.ok());  // a reconnecting link opens without a server
+  auto& cl = *opened.value();
+  EXPECT_FALSE(cl.connected());
+  EXPECT_EQ(cl.peer(), c.server);
+  cl.maintain(100.0);
+  auto events = cl.take_events();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_TRUE(events[0].warning);
+  EXPECT_NE(events[0].text.find("; retrying every 2 s"), std::string::npos) << events[0].text;
+  cl.maintain(101.0);  // not due yet
+  cl.maintain(102.0);  // due, fails again: not said again
+  EXPECT_TRUE(cl.take_events().empty());
+
+  auto server = TcpServerLink::listen("127.0.0.1", port, "server");
+  ASSERT_TRUE(server.ok()) << server.error().message;
+  cl.maintain(104.0);
+  ASSERT_TRUE(cl.connected());
+  EXPECT_EQ(cl.stats().connects, 1u);
+  events = cl.take_events();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].text, c.name + ": connected");
+  EXPECT_FALSE(events[0].warning);
+  ASSERT_TRUE(server.value()->wait_connected(1000));
+
+  server.value().reset();  // the server goes: the link says so and comes back by itself later
+  const double end = monotonic_s() + 2.0;
+  while (cl.connected() && monotonic_s() < end) (void)sysids_heard(cl, 1, 0.05);
+  EXPECT_FALSE(cl.connected());
+  EXPECT_FALSE(cl.closed());  // it reconnects
+  events = cl.take_events();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].text, c.name + ": connection closed; reconnecting every 2 s");
+}
+
+}  // namespace
+}  // namespace hitl::net
