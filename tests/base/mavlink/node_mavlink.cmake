@@ -21,7 +21,9 @@ set_tests_properties(node_mavlink_install PROPERTIES
   FIXTURES_SETUP node_mavlink LABELS conformance TIMEOUT 600)
 
 # Not hitl_add_test(): the discovered tests must require the fixture above.
+# The values and the cases it checks are in node_mavlink_values.h and node_mavlink_cases.h.
 add_executable(node_mavlink_test "${CMAKE_CURRENT_LIST_DIR}/node_mavlink_test.cpp")
+target_include_directories(node_mavlink_test PRIVATE ${PROJECT_SOURCE_DIR})
 target_link_libraries(node_mavlink_test PRIVATE hitl_mavlink GTest::gtest_main Threads::Threads)
 target_compile_options(node_mavlink_test PRIVATE ${HITL_WARNINGS})
 target_compile_definitions(node_mavlink_test PRIVATE

@@ -17,31 +17,24 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
-#include <bit>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include <unistd.h>
 
-#include "base/mavlink/crc.h"
-#include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/frame_parser.h"
 #include "base/mavlink/message_set.h"
-#include "base/mavlink/messages.h"
-#include "base/mavlink/typed_codec.h"
 #include "engine/mavlink/field_format.h"
+#include "tests/base/mavlink/node_mavlink_cases.h"
 
 #ifndef HITL_NODE_EXECUTABLE
 #define HITL_NODE_EXECUTABLE ""
@@ -57,15 +50,7 @@ namespace hitl::mavlink {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
-
-constexpr uint8_t kSysid = 7;
-constexpr uint8_t kCompid = 200;
-constexpr uint8_t kLinkId = 3;
-constexpr uint64_t kSignEpochMs = 1420070400000ULL;      // 2015-01-01T00:00:00Z
-constexpr uint64_t kSignBaseMs = 1700000000000ULL;       // a fixed signing time (ms since Unix epoch)
-constexpr SigningKey kKey = {0x9a, 0x1c, 0x44, 0x07, 0xe2, 0x5d, 0x80, 0x31, 0x6f, 0xc4, 0x12, 0xab, 0x03, 0x99, 0x58, 0x21,
-                             0xde, 0x70, 0x0b, 0x6a, 0x35, 0xf1, 0x8c, 0x27, 0x41, 0xb9, 0x5e, 0x02, 0xcd, 0x13, 0x76, 0xe8};
+using namespace conformance;
 
 // Known deviation of node-mavlink 2.3.0, checked exactly below rather than skipped:
 // MavLinkProtocolV2.calculateTruncatedPayloadLength (node_modules/node-mavlink/dist/lib/mavlink.js)
@@ -87,115 +72,6 @@ const std::set<std::string> kMissingInNodeMavlink = {"EVENT"};
 
 constexpr const char* kAllZeroDeviation =
     "node-mavlink 2.3.0 truncates an all-zero v2 payload to LEN 0 (spec and hitl keep 1 byte)";
-
-// ---------------------------------------------------------------- deterministic values
-
-struct Rng {
-  uint64_t state;
-  uint64_t next() {  // splitmix64
-    uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-};
-
-enum class Fill {
-  Random,        ///< full-range random bits (finite floats incl. subnormals and -0), strings with a NUL
-  Extremes,      ///< min/max/0/-1 integers, +-max/+-denorm/-0 floats, strings filling the whole array
-  TrailingZero,  ///< random, but the second half of the fields (wire order) zero: v2 truncation
-  AllZero,       ///< every field zero (see kAllZeroDeviation)
-};
-
-const char* fill_name(Fill fill) {
-  switch (fill) {
-    case Fill::Random: return "random";
-    case Fill::Extremes: return "extremes";
-    case Fill::TrailingZero: return "trailing-zero";
-    case Fill::AllZero: return "all-zero";
-  }
-  return "?";
-}
-
-template <class T>
-T random_element(Rng& rng, Fill fill, std::size_t k) {
-  if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) {
-    using Bits = std::conditional_t<std::is_same_v<T, float>, uint32_t, uint64_t>;
-    if (fill == Fill::Extremes) {
-      constexpr T kValues[] = {std::numeric_limits<T>::max(),        -std::numeric_limits<T>::max(),
-                               std::numeric_limits<T>::denorm_min(), -std::numeric_limits<T>::denorm_min(),
-                               T(-0.0),                              std::numeric_limits<T>::min(),
-                               T(1.0),                               T(-1.0)};
-      return kValues[k % std::size(kValues)];
-    }
-    constexpr int kMantissa = std::numeric_limits<T>::digits - 1;
-    constexpr Bits kExpMask = ((Bits{1} << (sizeof(T) * 8 - 1 - kMantissa)) - 1) << kMantissa;
-    Bits bits = static_cast<Bits>(rng.next());
-    if ((bits & kExpMask) == kExpMask) bits &= ~(Bits{1} << (sizeof(T) * 8 - 2));  // Inf/NaN -> finite
-    return std::bit_cast<T>(bits);
-  } else {
-    if (fill == Fill::Extremes) {
-      const T kValues[] = {std::numeric_limits<T>::max(), std::numeric_limits<T>::min(), T(1),
-                           static_cast<T>(std::numeric_limits<T>::max() - 1), static_cast<T>(-1)};
-      return kValues[k % std::size(kValues)];
-    }
-    return static_cast<T>(rng.next());
-  }
-}
-
-template <class T>
-void fill_value(T& value, Rng& rng, Fill fill, std::size_t k) {
-  value = random_element<T>(rng, fill, k);
-}
-
-template <class T, std::size_t N>
-void fill_value(std::array<T, N>& values, Rng& rng, Fill fill, std::size_t k) {
-  if constexpr (std::is_same_v<T, char>) {
-    values.fill('\0');
-    // Random: a string of 0..N-1 bytes (1..255) and its NUL. Extremes: all N bytes used, no NUL.
-    const std::size_t len = fill == Fill::Extremes ? N : static_cast<std::size_t>(rng.next() % N);
-    for (std::size_t i = 0; i < len; ++i) {
-      const uint8_t byte = fill == Fill::Extremes ? static_cast<uint8_t>(0x20 + (k + i) % 95)
-                                                  : static_cast<uint8_t>(1 + rng.next() % 255);
-      values[i] = static_cast<char>(byte);
-    }
-  } else {
-    for (std::size_t i = 0; i < N; ++i) values[i] = random_element<T>(rng, fill, k + i);
-  }
-}
-
-template <class M>
-M make_message(Fill fill, uint64_t seed) {
-  M m{};
-  if (fill == Fill::AllZero) return m;
-  Rng rng{seed};
-  constexpr std::size_t kFields = std::tuple_size_v<decltype(M::fields())>;
-  std::size_t index = 0;
-  std::apply(
-      [&](const auto&... field) {
-        auto one = [&](const auto& f) {
-          const std::size_t i = index++;
-          if (fill == Fill::TrailingZero && i >= (kFields + 1) / 2) return;  // stays zero
-          fill_value(m.*(f.member), rng, fill, i);
-        };
-        (one(field), ...);
-      },
-      M::fields());
-  return m;
-}
-
-// ---------------------------------------------------------------- helpers
-
-std::string to_hex(std::span<const uint8_t> bytes) {
-  static constexpr char kDigits[] = "0123456789abcdef";
-  std::string out;
-  out.reserve(bytes.size() * 2);
-  for (uint8_t b : bytes) {
-    out += kDigits[b >> 4];
-    out += kDigits[b & 0x0F];
-  }
-  return out;
-}
 
 std::vector<uint8_t> from_hex(const std::string& hex) {
   std::vector<uint8_t> out;
@@ -236,82 +112,6 @@ std::vector<Frame> parse_all(std::span<const uint8_t> bytes, const MessageSet& s
   parser.parse_datagram(bytes, [&](const Frame& f) { frames.push_back(f); });
   if (stats) *stats = parser.stats();
   return frames;
-}
-
-// ---------------------------------------------------------------- cases
-
-struct Case {
-  std::string name;      ///< "HIL_SENSOR/random"
-  std::string msgname;
-  Fill fill = Fill::Random;
-  uint8_t seq = 0;
-  std::vector<uint8_t> hitl_frame;
-  std::vector<uint8_t> hitl_signed_frame;
-  std::array<uint8_t, kMaxPayloadLen> payload{};  ///< untruncated payload of the values
-  const MessageDesc* desc = nullptr;
-  uint64_t sign_ms = 0;  ///< node signs at this time when non-zero
-  /// hitl's decode of node-mavlink's frame, re-encoded untruncated (filled by the checker).
-  std::function<std::array<uint8_t, kMaxPayloadLen>(const Frame&)> reencode;
-};
-
-template <class M>
-void add_cases(std::vector<Case>& cases, json& jobs, FrameEncoder& encoder, FrameEncoder& signer, const MessageSet& set) {
-  const MessageDesc* desc = set.find(M::kId);
-  ASSERT_NE(desc, nullptr) << M::kName;
-  for (Fill fill : {Fill::Random, Fill::Extremes, Fill::TrailingZero, Fill::AllZero}) {
-    Case c;
-    c.msgname = std::string(M::kName);
-    c.name = c.msgname + "/" + fill_name(fill);
-    c.fill = fill;
-    c.desc = desc;
-    const M message = make_message<M>(fill, (uint64_t{M::kId} << 8) ^ static_cast<uint64_t>(fill) ^ 0x5EED0000ULL);
-    encode_payload(message, c.payload.data());
-    c.seq = encoder.next_seq();
-    FrameBuffer buf{};
-    c.hitl_frame.assign(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(encoder.encode(message, buf)));
-    c.reencode = [](const Frame& f) {
-      std::array<uint8_t, kMaxPayloadLen> out{};
-      encode_payload(f.as<M>(), out.data());
-      return out;
-    };
-
-    json job = {{"name", c.name}, {"msgname", c.msgname}, {"msgid", M::kId}, {"crc_extra", M::kCrcExtra},
-                {"max_length", M::kMaxLength}, {"seq", c.seq}, {"sysid", kSysid}, {"compid", kCompid},
-                {"hitl_frame", to_hex(c.hitl_frame)}};
-    json fields = json::array();
-    for (const auto& f : desc->fields) {
-      fields.push_back({{"name", f.name}, {"type", std::string(to_string(f.type))}, {"length", f.array_length},
-                        {"offset", f.offset}, {"extension", f.extension},
-                        {"hex", to_hex(std::span<const uint8_t>(c.payload.data() + f.offset, f.wire_size()))}});
-    }
-    job["fields"] = std::move(fields);
-    if (fill == Fill::Random) {
-      c.sign_ms = kSignBaseMs + M::kId;
-      const std::size_t n = signer.encode(message, buf);
-      c.hitl_signed_frame.assign(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(n));
-      job["hitl_signed_frame"] = to_hex(c.hitl_signed_frame);
-      job["sign"] = {{"key", to_hex(kKey)}, {"link_id", kLinkId}, {"timestamp_ms", c.sign_ms}};
-    }
-    jobs.push_back(std::move(job));
-    cases.push_back(std::move(c));
-  }
-}
-
-template <class... Ms>
-void add_all_cases(std::vector<Case>& cases, json& jobs, FrameEncoder& encoder, FrameEncoder& signer, const MessageSet& set,
-                   TypeList<Ms...>) {
-  (add_cases<Ms>(cases, jobs, encoder, signer, set), ...);
-}
-
-/// The frame node-mavlink is expected to send for an all-zero message (kAllZeroDeviation).
-std::vector<uint8_t> expected_node_all_zero(const std::vector<uint8_t>& hitl_frame, const MessageDesc& desc) {
-  std::vector<uint8_t> out(hitl_frame.begin(), hitl_frame.begin() + kHeaderLenV2);
-  out[1] = 0;
-  uint16_t crc = crc_x25(std::span<const uint8_t>(out.data() + 1, kHeaderLenV2 - 1));
-  crc = crc_accumulate(desc.crc_extra, crc);
-  out.push_back(static_cast<uint8_t>(crc));
-  out.push_back(static_cast<uint8_t>(crc >> 8));
-  return out;
 }
 
 // ---------------------------------------------------------------- node
