@@ -82,8 +82,8 @@ std::string to_line(const bridge::BridgeHealth& h) {
 class Printer : public bridge::BridgeObserver {
  public:
   explicit Printer(const GlobalOptions& g) : g_(g) {}
-  void on_event(const std::string& text, bool warning) override {
-    if (g_.quiet && !warning) return;
+  void on_event(const std::string& text, Severity severity) override {
+    if (g_.quiet && severity == Severity::Info) return;
     std::cerr << "hitl bridge: " << text << std::endl;
   }
   void on_health(const bridge::BridgeHealth& h) override {

@@ -49,10 +49,10 @@ class BoardEvents : public target::Board::Observer {
  public:
   explicit BoardEvents(const GlobalOptions& g) : g_(g) {}
   void on_event(const target::BoardEvent& e) override {
-    if (!e.warning && g_.verbosity == 0) return;
+    if (e.severity == Severity::Info && g_.verbosity == 0) return;
     std::lock_guard<std::mutex> lock(mutex_);
     if (dashboard_ != nullptr)
-      dashboard_->note(e.warning ? tui::Severity::Warning : tui::Severity::Info, "board: " + e.text);
+      dashboard_->note(e.severity, "board: " + e.text);
     else
       std::cerr << "hitl demo: board: " << e.text << '\n';
   }

@@ -34,7 +34,7 @@ class TargetPrinter : public target::Board::Observer {
  public:
   explicit TargetPrinter(const GlobalOptions& global) : global_(global) {}
   void on_event(const target::BoardEvent& e) override {
-    if (e.warning || !global_.quiet) std::cerr << "hitl target: " << (e.warning ? "warning: " : "") << e.text << '\n';
+    if (e.severity != Severity::Info || !global_.quiet) std::cerr << "hitl target: " << (e.severity != Severity::Info ? std::string(to_string(e.severity)) + ": " : "") << e.text << '\n';
   }
   void on_status(const target::BoardSnapshot& s) override {
     if (global_.json) {

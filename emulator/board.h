@@ -11,7 +11,9 @@
 #include <string>
 
 #include "base/common/expected.h"
+#include "base/common/severity.h"
 #include "base/contract/board_ports.h"
+#include "base/contract/data_rates.h"
 #include "emulator/faults.h"
 
 namespace hitl::target {
@@ -27,12 +29,12 @@ struct BoardConfig {
   double duration_s = 0;   ///< --duration: stop after this much board time (0: until stopped)
   uint8_t sysid = 1;
   uint8_t compid = 1;      ///< MAV_COMP_ID_AUTOPILOT1
-  uint64_t actuator_interval_us = 5000;  ///< HIL_ACTUATOR_CONTROLS at 200 Hz (real-time clock)
+  uint64_t actuator_interval_us = kActuatorStreamPeriod_us;  ///< HIL_ACTUATOR_CONTROLS at 200 Hz (real-time clock)
   BoardFaults faults;      ///< --fault NAME (repeatable): what hitl doctor must catch (faults.h)
 };
 
 struct BoardEvent {
-  bool warning = false;
+  Severity severity = Severity::Info;
   std::string text;
 };
 

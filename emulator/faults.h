@@ -2,14 +2,14 @@
 // so that each of doctor's checks can be shown to fail when it should. Each is a deliberate
 // misbehaviour of the emulated board, at one clearly named place:
 //
-//   no-actuators        board.cpp, send_actuators: no HIL_ACTUATOR_CONTROLS at all (the stream not
+//   no-actuators        board_streams.cpp, send_actuators: no HIL_ACTUATOR_CONTROLS at all (the stream not
 //                       configured by the start script)
-//   wrong-flags         board.cpp, send_actuators: flags 0 instead of the VOXL2's 0x0F (a PX4 build
+//   wrong-flags         board_streams.cpp, send_actuators: flags 0 instead of the VOXL2's 0x0F (a PX4 build
 //                       without the VOXL2 HIL change)
 //   wrong-cal-acc0-id   Board::create: CAL_ACC0_ID = kWrongAccelDeviceId, not dsp_hitl's accel ID;
 //                       the accelerometer is then uncalibrated and arming is refused
 //   sys-hitl-0          Board::create: SYS_HITL 0; HEARTBEAT lacks MAV_MODE_FLAG_HIL_ENABLED
-//   dsp-hitl-stalled    board.cpp, process_board: after kDspStallAfterImu hil_sensor_imu MUORB stops
+//   dsp-hitl-stalled    board_hil.cpp, process_board: after kDspStallAfterImu hil_sensor_imu MUORB stops
 //                       delivering hil_sensor_* to the DSP: dsp_hitl's counters freeze (it still says
 //                       "Running: yes"), PX4 gets no more IMU, mag or baro
 //   ekf-not-converging  flight_adapter.cpp, on_mag: each magnetometer sample turned kEkfFaultMagSwing_rad

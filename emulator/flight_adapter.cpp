@@ -68,8 +68,8 @@ void FlightAdapter::on_mag(const SensorMag& mag) {
 void FlightAdapter::on_baro(const SensorBaro& baro) {
   flight::BaroSample s;
   s.time_us = baro.timestamp_sample_us;
-  s.pressure_pa = baro.pressure_Pa;
-  s.temperature_c = baro.temperature_degC;
+  s.pressure_Pa = baro.pressure_Pa;
+  s.temperature_degC = baro.temperature_degC;
   impl_->core.handle_baro(s);
 }
 

@@ -76,8 +76,8 @@ BridgeDashboard::BridgeDashboard(const bridge::BridgeConfig& config)
   log_.add(Severity::Info, "hitl bridge --tui: ? for the keys");
 }
 
-void BridgeDashboard::on_event(const std::string& text, bool warning) {
-  log_.add(warning ? Severity::Warning : Severity::Info, text);
+void BridgeDashboard::on_event(const std::string& text, Severity severity) {
+  log_.add(severity, text);
 }
 
 void BridgeDashboard::on_health(const bridge::BridgeHealth& health) {

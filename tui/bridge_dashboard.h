@@ -29,7 +29,7 @@ class BridgeDashboard : public DashboardSource, public DashboardActions, public 
   std::optional<std::string> refusal(Action action) const override;
   void perform(Action action, const std::string& argument) override;
   // bridge::BridgeObserver (the bridge's thread)
-  void on_event(const std::string& text, bool warning) override;
+  void on_event(const std::string& text, Severity severity) override;
   void on_health(const bridge::BridgeHealth& health) override;
 
   /// The bridge ended: the dashboard closes with `why`.

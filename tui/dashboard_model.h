@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "base/common/severity.h"
 #include "engine/telemetry/estimator_flags.h"
 #include "engine/telemetry/health.h"
 
@@ -89,7 +90,7 @@ struct VehiclePanel {
   double rotor_max_rad_s = 0;      ///< full scale of the rotor bars
 };
 
-enum class Severity { Info, Notice, Warning, Error };
+using Severity = ::hitl::Severity;  // base/common/severity.h
 
 struct LogLine {
   double t_s = 0;                  ///< on the dashboard's clock (simulated seconds for sim and demo; else since it started)

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "base/mavlink/messages.h"
+#include "base/mavlink/text_field.h"
 #include "tui/draw.h"
 
 namespace hitl::tui {
@@ -14,7 +15,7 @@ InspectDashboard::InspectDashboard(std::string where, std::map<std::string, doub
 void InspectDashboard::on_frame(const mavlink::Frame& frame, const std::string& source, int64_t) {
   if (!frame.is<mavlink::msg::Statustext>() || frame.desc == nullptr) return;
   const auto t = frame.as<mavlink::msg::Statustext>();
-  const std::string text(t.text.data(), strnlen(t.text.data(), t.text.size()));
+  const std::string text = mavlink::text_of(t.text);
   const std::string from = source + " " + std::to_string(frame.sysid);
   log_.add_statustext(severity_from_mavlink(t.severity), from, "[" + from + "] " + text);
 }

@@ -1,7 +1,7 @@
 #include "tui/message_log.h"
 
 #include "base/common/clock.h"
-#include "base/mavlink/enums.h"
+#include "base/mavlink/severity.h"
 
 namespace hitl::tui {
 namespace {
@@ -15,13 +15,7 @@ std::string clean(const std::string& text) {
 
 }  // namespace
 
-Severity severity_from_mavlink(uint8_t mav_severity) {
-  using mavlink::MavSeverity;
-  if (mav_severity <= static_cast<uint8_t>(MavSeverity::Error)) return Severity::Error;
-  if (mav_severity == static_cast<uint8_t>(MavSeverity::Warning)) return Severity::Warning;
-  if (mav_severity == static_cast<uint8_t>(MavSeverity::Notice)) return Severity::Notice;
-  return Severity::Info;
-}
+Severity severity_from_mavlink(uint8_t mav_severity) { return mavlink::severity_of(mav_severity); }
 
 MessageLog::MessageLog(std::function<double()> wall_s)
     : wall_s_(wall_s ? std::move(wall_s) : std::function<double()>(monotonic_s)), start_s_(wall_s_()) {}

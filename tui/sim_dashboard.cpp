@@ -27,8 +27,7 @@ void SimDashboard::shutdown() {
 }
 
 void SimDashboard::on_event(const hil::SessionEvent& event) {
-  const Severity s = event.severity == hil::Severity::Error ? Severity::Error
-                     : event.severity == hil::Severity::Warning ? Severity::Warning : Severity::Info;
+  const Severity s = event.severity;
   // Pause, resume and reset come from the keys: their outcome is pinned in the header.
   const bool key_outcome = event.text.rfind("paused at", 0) == 0 || event.text.rfind("resumed at", 0) == 0 ||
                            event.text.rfind("reset to home", 0) == 0;

@@ -1,5 +1,7 @@
 // The two clocks hitl reads: wall time (timestamps on the wire and in .tlog) and monotonic time
-// (durations, deadlines, timeouts), in the units their callers use.
+// (durations, deadlines, timeouts), in the units their callers use. Standard library only (C++17):
+// the board programs (target/adb-relay, target/vio-server) read it too. std::chrono::steady_clock
+// is CLOCK_MONOTONIC on Linux.
 #pragma once
 
 #include <chrono>
@@ -21,6 +23,17 @@ inline double monotonic_s() {
 inline uint64_t monotonic_us() {
   return static_cast<uint64_t>(
       std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch()).count());
+}
+
+/// Milliseconds on the monotonic clock, signed: for deadline arithmetic (`deadline_ms - now`).
+inline int64_t monotonic_ms() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// Nanoseconds on the monotonic clock (CLOCK_MONOTONIC: what the board's MPA pipes stamp poses with).
+inline uint64_t monotonic_ns() {
+  return static_cast<uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count());
 }
 
 }  // namespace hitl

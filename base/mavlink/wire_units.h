@@ -12,7 +12,7 @@ inline constexpr uint16_t kCogUnknown = 65535;  ///< HIL_GPS / GPS_RAW_INT cog: 
 inline constexpr uint16_t kUint16Unknown = UINT16_MAX;
 
 /// Pa -> hPa (HIL_SENSOR.abs_pressure / diff_pressure; PX4 multiplies by 100).
-inline float pa_to_hpa(double pressure_pa) { return static_cast<float>(pressure_pa / 100.0); }
+inline float Pa_to_hPa(double pressure_Pa) { return static_cast<float>(pressure_Pa / 100.0); }
 /// degrees -> degE7 (lat/lon).
 inline int32_t deg_to_degE7(double deg) { return static_cast<int32_t>(std::llround(deg * 1e7)); }
 /// metres -> millimetres (HIL_GPS.alt).

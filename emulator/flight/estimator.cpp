@@ -86,7 +86,7 @@ void Estimator::handle_baro(const BaroSample& sample) {
   baro_seen_ = true;
   last_baro_us_ = sample.time_us;
   now_us_ = std::max(now_us_, sample.time_us);
-  const double h_m = isa_altitude_m(sample.pressure_pa);
+  const double h_m = isa_altitude_m(sample.pressure_Pa);
   if (!z_initialized_) {
     baro_ref_sum_m_ += h_m;
     if (++baro_ref_count_ < kBaroRefSamples) return;

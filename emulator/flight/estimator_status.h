@@ -8,23 +8,12 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "base/mavlink/enums.h"
+
 namespace hitl::flight {
 
-/// MAVLink ESTIMATOR_STATUS_FLAGS (common.xml).
-namespace estimator_flags {
-inline constexpr std::uint16_t kAttitude = 1;
-inline constexpr std::uint16_t kVelocityHoriz = 2;
-inline constexpr std::uint16_t kVelocityVert = 4;
-inline constexpr std::uint16_t kPosHorizRel = 8;
-inline constexpr std::uint16_t kPosHorizAbs = 16;
-inline constexpr std::uint16_t kPosVertAbs = 32;
-inline constexpr std::uint16_t kPosVertAgl = 64;
-inline constexpr std::uint16_t kConstPosMode = 128;
-inline constexpr std::uint16_t kPredPosHorizRel = 256;
-inline constexpr std::uint16_t kPredPosHorizAbs = 512;
-inline constexpr std::uint16_t kGpsGlitch = 1024;
-inline constexpr std::uint16_t kAccelError = 2048;
-}  // namespace estimator_flags
+/// MAVLink ESTIMATOR_STATUS_FLAGS (common.xml): the codec's constants (std-only, header only).
+namespace estimator_flags = ::hitl::mavlink::estimator_status;
 
 /// The state estimate at the last IMU sample.
 struct Estimate {

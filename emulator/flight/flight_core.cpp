@@ -33,7 +33,7 @@ std::string to_string(CommandResult result) {
 
 FlightCore::FlightCore(const FlightParams& params) : params_(params), estimator_(params_) {}
 
-void FlightCore::say(std::uint8_t sev, std::string text) { messages_.push_back({sev, std::move(text)}); }
+void FlightCore::say(Severity sev, std::string text) { messages_.push_back({sev, std::move(text)}); }
 
 std::vector<StatusMessage> FlightCore::take_messages() {
   std::vector<StatusMessage> out;
@@ -86,7 +86,7 @@ CommandReply FlightCore::arm(bool force) {
   if (!force) {
     const Readiness r = estimator_.preflight_check();
     if (!r.ready) {
-      say(severity::kCritical, r.reason);
+      say(Severity::Error, r.reason);
       return {CommandResult::Denied, r.reason};
     }
   }
@@ -98,7 +98,7 @@ CommandReply FlightCore::arm(bool force) {
   reset_controllers();
   hold_NED_m_ = estimator_.estimate().p_NED_m;
   yaw_sp_rad_ = estimator_.estimate().yaw_rad;
-  say(severity::kInfo, force ? "Armed by external command (forced)" : "Armed by external command");
+  say(Severity::Info, force ? "Armed by external command (forced)" : "Armed by external command");
   return {CommandResult::Accepted, ""};
 }
 
@@ -106,14 +106,14 @@ void FlightCore::do_disarm(const char* why) {
   armed_ = false;
   landed_state_ = LandedState::OnGround;
   reset_controllers();
-  say(severity::kInfo, why);
+  say(Severity::Info, why);
 }
 
 CommandReply FlightCore::disarm(bool force) {
   if (!armed_) return {CommandResult::Accepted, ""};
   if (!force && landed_state_ != LandedState::OnGround) {
     const std::string reason = "Disarming denied: not landed";
-    say(severity::kCritical, reason);
+    say(Severity::Error, reason);
     return {CommandResult::Denied, reason};
   }
   do_disarm("Disarmed by external command");
@@ -123,13 +123,13 @@ CommandReply FlightCore::disarm(bool force) {
 CommandReply FlightCore::takeoff(const TakeoffRequest& request) {
   if (!armed_) {
     const std::string reason = "Takeoff denied: disarmed";
-    say(severity::kCritical, reason);
+    say(Severity::Error, reason);
     return {CommandResult::Denied, reason};
   }
   const Estimate& e = estimator_.estimate();
   if (!e.xy_valid || !e.z_valid) {
     const std::string reason = "Takeoff denied: no position estimate";
-    say(severity::kCritical, reason);
+    say(Severity::Error, reason);
     return {CommandResult::Denied, reason};
   }
   double target_z_m = home_.p_NED_m.z() - params_.MIS_TAKEOFF_ALT;
@@ -139,7 +139,7 @@ CommandReply FlightCore::takeoff(const TakeoffRequest& request) {
   }
   if (target_z_m > e.p_NED_m.z() - 0.5 && landed_state_ == LandedState::OnGround) {
     const std::string reason = "Takeoff denied: altitude below the vehicle";
-    say(severity::kCritical, reason);
+    say(Severity::Error, reason);
     return {CommandResult::Denied, reason};
   }
   takeoff_target_z_m_ = target_z_m;
@@ -156,7 +156,7 @@ CommandReply FlightCore::takeoff(const TakeoffRequest& request) {
   mode_ = FlightMode::Takeoff;
   char buf[80];
   std::snprintf(buf, sizeof(buf), "Takeoff to %.1f m above home", home_.p_NED_m.z() - target_z_m);
-  say(severity::kInfo, buf);
+  say(Severity::Info, buf);
   return {CommandResult::Accepted, ""};
 }
 
@@ -169,7 +169,7 @@ CommandReply FlightCore::set_mode(FlightMode mode) {
   if (mode == FlightMode::Takeoff) return takeoff({});
   if (mode == FlightMode::Stabilized && !sticks_fresh()) {  // PX4's mode requirement: manual control
     const std::string reason = "Switching to Stabilized is currently not possible: no manual control input";
-    say(severity::kCritical, reason);
+    say(Severity::Error, reason);
     return {CommandResult::Denied, reason};
   }
   enter_mode(mode);
@@ -193,7 +193,7 @@ void FlightCore::enter_mode(FlightMode mode) {
     case FlightMode::Land:
       if (armed_ && landed_state_ != LandedState::OnGround) {
         landed_state_ = LandedState::Landing;
-        say(severity::kInfo, "Landing at current position");
+        say(Severity::Info, "Landing at current position");
       }
       land_detector_.reset();
       thrust_limit_ = kNaN;
@@ -221,7 +221,7 @@ PositionSetpoint FlightCore::setpoint_for_mode(double dt_s) {
         landed_state_ = LandedState::InAir;
         mode_ = FlightMode::Hold;
         hold_NED_m_ << takeoff_xy_NED_m_, takeoff_target_z_m_;
-        say(severity::kInfo, "Takeoff complete, holding");
+        say(Severity::Info, "Takeoff complete, holding");
       }
       break;
     }
@@ -299,13 +299,13 @@ void FlightCore::step(std::uint64_t now_us) {
       sticks_deflected_for_override()) {
     enter_mode(FlightMode::Position);
     landed_state_ = LandedState::InAir;
-    say(severity::kInfo, "Pilot took over position control using sticks");
+    say(Severity::Info, "Pilot took over position control using sticks");
   }
 
   // Stabilized without sticks has nothing to fly by: hold position instead (PX4's RC-loss failsafe).
   if (mode_ == FlightMode::Stabilized && landed_state_ != LandedState::OnGround && !sticks_fresh()) {
     enter_mode(FlightMode::Hold);
-    say(severity::kWarning, "Manual control lost: switching to Hold");
+    say(Severity::Warning, "Manual control lost: switching to Hold");
   }
 
   if (landed_state_ == LandedState::OnGround) {
@@ -317,7 +317,7 @@ void FlightCore::step(std::uint64_t now_us) {
       manual_attitude_.reset(e.yaw_rad);
       landed_state_ = LandedState::InAir;
       flown_since_arming_ = true;
-      say(severity::kInfo, "Takeoff detected");
+      say(Severity::Info, "Takeoff detected");
     } else {
       const double on_ground_s = seconds(now_us, on_ground_since_us_);
       if (!flown_since_arming_ && params_.COM_DISARM_PRFLT > 0.0 && on_ground_s > params_.COM_DISARM_PRFLT) {
@@ -362,7 +362,7 @@ void FlightCore::step(std::uint64_t now_us) {
       landed_state_ = LandedState::OnGround;
       on_ground_since_us_ = now_us;
       reset_controllers();
-      say(severity::kInfo, "Landing detected");
+      say(Severity::Info, "Landing detected");
       idle_outputs();
     }
   }

@@ -16,6 +16,8 @@
 
 #include <Eigen/Core>
 
+#include "base/common/severity.h"
+#include "base/contract/hil_actuators.h"
 #include "emulator/flight/estimator.h"
 #include "emulator/flight/flight_params.h"
 #include "emulator/flight/inputs.h"
@@ -39,23 +41,18 @@ struct CommandReply {
   std::string reason;  ///< empty when accepted
 };
 
-/// MAV_SEVERITY values.
-namespace severity {
-inline constexpr std::uint8_t kCritical = 2, kError = 3, kWarning = 4, kNotice = 5, kInfo = 6;
-}
 struct StatusMessage {
-  std::uint8_t severity = severity::kInfo;
+  Severity severity = Severity::Info;  ///< base/common/severity.h (a denial is Error: CRITICAL on the wire)
   std::string text;
 };
 
 /// HIL_ACTUATOR_CONTROLS content.
-inline constexpr std::uint64_t kHilActuatorFlags = 0x0F;  ///< as the VOXL2 sends for a quad
 struct ActuatorOutput {
   std::uint64_t time_us = 0;
   std::array<double, 4> u{};  ///< controls[0..3], 0..1, PX4 motor order
   bool armed = false;
   std::uint8_t mode = 0;      ///< MAV_MODE_FLAG (SAFETY_ARMED 128 when armed)
-  std::uint64_t flags = kHilActuatorFlags;
+  std::uint64_t flags = kVoxl2ActuatorFlags;  ///< as the VOXL2 sends for a quad (base/contract/hil_actuators.h)
 };
 
 struct Home {
@@ -124,7 +121,7 @@ class FlightCore {
   std::vector<std::string> ekf2_status_lines() const { return estimator_.status_lines(); }
 
  private:
-  void say(std::uint8_t sev, std::string text);
+  void say(Severity sev, std::string text);
   void do_disarm(const char* why);
   void set_home();
   void enter_mode(FlightMode mode);

@@ -24,8 +24,8 @@ struct MagSample {
 
 struct BaroSample {
   std::uint64_t time_us = 0;
-  double pressure_pa = 0.0;  ///< absolute (HIL_SENSOR carries hPa: multiply by 100)
-  double temperature_c = 15.0;
+  double pressure_Pa = 0.0;  ///< absolute (HIL_SENSOR carries hPa: multiply by 100)
+  double temperature_degC = 15.0;
 };
 
 struct GpsSample {

@@ -34,8 +34,8 @@ LatLon LocalProjection::to_lat_lon(const Eigen::Vector2d& p_NE_m) const {
   return {lat_rad / kDegToRad, lon0_deg_ + dlon_rad / kDegToRad};
 }
 
-double isa_altitude_m(double pressure_pa) {
-  return (1.0 - std::pow(pressure_pa / 101325.0, 1.0 / 5.25588)) / 2.25577e-5;
+double isa_altitude_m(double pressure_Pa) {
+  return (1.0 - std::pow(pressure_Pa / 101325.0, 1.0 / 5.25588)) / 2.25577e-5;
 }
 
 }  // namespace hitl::flight

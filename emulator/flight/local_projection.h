@@ -32,6 +32,6 @@ class LocalProjection {
 };
 
 /// ISA (troposphere) pressure altitude [m] of an absolute pressure [Pa].
-double isa_altitude_m(double pressure_pa);
+double isa_altitude_m(double pressure_Pa);
 
 }  // namespace hitl::flight

@@ -182,7 +182,7 @@ class Bridge {
   /// What the --endpoint links said (TCP connected, lost, retrying).
   void say_link_events() {
     for (auto& e : endpoints_)
-      for (const auto& ev : e->link->take_events()) observer_.on_event(ev.text, ev.warning);
+      for (const auto& ev : e->link->take_events()) observer_.on_event(ev.text, ev.warning ? Severity::Warning : Severity::Info);
   }
 
   void on_board_frame(const mavlink::Frame& f, double now) {
@@ -215,7 +215,7 @@ class Bridge {
           observer_.on_event("the board link shows more than " + std::to_string(kMaxLossSources) +
                                  " sources (sysid/compid); loss is tracked for the first ones only (frames of others "
                                  "counted: untracked_frames)",
-                             true);
+                             Severity::Warning);
         return;
       }
       it = sequences_.emplace(key, mavlink::SequenceTracker{}).first;
@@ -234,12 +234,12 @@ class Bridge {
                     "board gone: nothing from %s for %.1f s (cable unplugged, PX4 restarted?); every socket stays open, "
                     "traffic resumes when it is back",
                     board_address_->to_string().c_str(), silent_s);
-      observer_.on_event(text, true);
+      observer_.on_event(text, Severity::Warning);
     } else if (gone_ && silent_s < kBoardGoneAfter_s) {
       gone_ = false;
       char text[120];
       std::snprintf(text, sizeof text, "board back after %.1f s", now - gone_since_s_);
-      observer_.on_event(text, false);
+      observer_.on_event(text, Severity::Info);
     }
   }
 
@@ -252,12 +252,7 @@ class Bridge {
   void tick(double now) {
     // Our HEARTBEAT (an onboard component, not a ground station: PX4's GCS-loss logic must not
     // count the bridge) makes a fresh PX4 instance take this port as its partner.
-    msg::Heartbeat hb;
-    hb.type = static_cast<uint8_t>(mavlink::MavType::Onboard);
-    hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
-    hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
-    hb.mavlink_version = mavlink::kMavlinkVersion;
-    send_own(board_link_, hb);
+    send_own(board_link_, mavlink::onboard_heartbeat());
     msg::Timesync ts;
     ts.tc1 = 0;
     ts.ts1 = static_cast<int64_t>(monotonic_us()) * 1000;
@@ -266,9 +261,9 @@ class Bridge {
     if (timesync_sent_ns_.size() > kTimesyncRemembered) timesync_sent_ns_.pop_front();
     send_own(board_link_, ts);
     // Each destination's first refused send, said at once; later ones are counted (send_errors).
-    for (const auto& text : board_->take_send_errors()) observer_.on_event(text, true);
+    for (const auto& text : board_->take_send_errors()) observer_.on_event(text, Severity::Warning);
     for (const auto& e : endpoints_)
-      for (const auto& text : e->link->take_send_errors()) observer_.on_event("--endpoint " + e->spec.text + ": " + text, true);
+      for (const auto& text : e->link->take_send_errors()) observer_.on_event("--endpoint " + e->spec.text + ": " + text, Severity::Warning);
     observer_.on_health(health(now));
   }
 
@@ -342,7 +337,7 @@ Status run_bridge(const BridgeConfig& config, BridgeObserver& observer, const st
   Bridge bridge(config, observer);
   if (auto st = bridge.open(); !st) return st;
   if (opened != nullptr) *opened = true;
-  observer.on_event(bridge.describe(), false);
+  observer.on_event(bridge.describe(), Severity::Info);
   return bridge.run(stop);
 }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "base/common/expected.h"
+#include "base/common/severity.h"
 #include "base/contract/board_ports.h"
 #include "base/contract/data_rates.h"
 #include "base/contract/session_status.h"
@@ -72,7 +73,7 @@ struct BridgeHealth {
 class BridgeObserver {
  public:
   virtual ~BridgeObserver() = default;
-  virtual void on_event(const std::string& text, bool warning) = 0;
+  virtual void on_event(const std::string& text, Severity severity) = 0;
   virtual void on_health(const BridgeHealth& health) = 0;
 };
 

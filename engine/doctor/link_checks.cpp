@@ -139,7 +139,7 @@ CheckResult actuator_flags_check(const SessionStatus& s) {
   if (!s.heard() || !s.actuator_flags) return make_result(check::kActuatorFlags, Verdict::Skip, "the session did not report actuators");
   if (*s.actuator_flags < 0) return make_result(check::kActuatorFlags, Verdict::Skip, "no HIL_ACTUATOR_CONTROLS received yet");
   const std::string saw = "flags " + hex(static_cast<uint32_t>(*s.actuator_flags), 2);
-  if (*s.actuator_flags == kVoxl2ActuatorFlags) return make_result(check::kActuatorFlags, Verdict::Pass, saw + " (motors 0-3)");
+  if (static_cast<uint64_t>(*s.actuator_flags) == kVoxl2ActuatorFlags) return make_result(check::kActuatorFlags, Verdict::Pass, saw + " (motors 0-3)");
   return make_result(check::kActuatorFlags, Verdict::Fail, saw + ", not 0x0F (the VOXL2's quad bitmask, motors 0-3)",
                      "deploy a voxl-fpv-px4 built with HITL support (its HIL_ACTUATOR_CONTROLS set flags = 0x0F), then: " +
                          std::string(kRestartPx4));

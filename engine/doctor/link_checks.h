@@ -9,13 +9,13 @@
 #include <vector>
 
 #include "base/common/expected.h"
+#include "base/contract/hil_actuators.h"
 #include "engine/doctor/check_result.h"
 #include "engine/doctor/observations.h"
 
 namespace hitl::doctor {
 
-/// HIL_ACTUATOR_CONTROLS.flags the VOXL2 sends for a quad (motors 0-3), per the spec.
-inline constexpr int32_t kVoxl2ActuatorFlags = 0x0F;
+using ::hitl::kVoxl2ActuatorFlags;  // base/contract/hil_actuators.h
 
 /// heartbeat: `link` is how doctor reached the autopilot, or why it could not.
 CheckResult heartbeat_check(const Expected<std::string>& link, const std::optional<HeartbeatSeen>& heartbeat);

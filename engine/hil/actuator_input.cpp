@@ -1,7 +1,5 @@
 #include "engine/hil/actuator_input.h"
 
-#include <cmath>
-
 #include "base/mavlink/enums.h"
 
 namespace hitl::hil {
@@ -29,15 +27,9 @@ bool ActuatorInput::on_message(const mavlink::msg::HilActuatorControls& message,
   ++fresh_;
   bool clamped = false;
   for (std::size_t i = 0; i < last_.u.size(); ++i) {
-    double u = message.controls[i];
-    if (!std::isfinite(u)) {
-      u = 0.0;
-      clamped = true;
-    } else if (u < 0.0 || u > 1.0) {
-      u = std::clamp(u, 0.0, 1.0);
-      clamped = true;
-    }
-    last_.u[i] = u;
+    const auto checked = model::check_motor_command(message.controls[i]);  // the model's rule, once
+    clamped = clamped || checked.fix != model::CommandFix::None;
+    last_.u[i] = checked.u;
   }
   if (clamped) ++counters_.clamped;
   mode_ = message.mode;

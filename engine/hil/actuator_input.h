@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "base/contract/data_rates.h"
 #include "base/mavlink/messages.h"
 #include "engine/model/multicopter.h"
 
@@ -34,7 +35,7 @@ struct ActuatorCounters {
 class ActuatorInput {
  public:
   static constexpr uint64_t kEchoWindow_us = 1000000;  ///< how far back an echo is taken as late
-  static constexpr uint64_t kStep_us = 4000;           ///< an echo this far past T still answers T
+  static constexpr uint64_t kStep_us = kHilImuPublishPeriod_us;  ///< an echo this far past T still answers T
 
   explicit ActuatorInput(double timeout_s) : timeout_s_(timeout_s) {}
 

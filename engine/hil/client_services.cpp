@@ -5,19 +5,12 @@
 
 #include "engine/hil/sensor_messages.h"
 #include "base/mavlink/enums.h"
+#include "base/mavlink/heartbeat.h"
 #include "base/mavlink/messages.h"
+#include "base/mavlink/text_field.h"
 #include "engine/net/udp_link.h"
 
 namespace hitl::hil {
-namespace {
-
-template <std::size_t N>
-void set_name(std::array<char, N>& field, std::string_view name) {
-  field.fill('\0');
-  std::copy_n(name.begin(), std::min(name.size(), N), field.begin());
-}
-
-}  // namespace
 
 Expected<std::unique_ptr<ClientServices>> ClientServices::open(const SessionConfig& config,
                                                                const mavlink::MessageSet& messages, StackLink& stack,
@@ -114,26 +107,21 @@ void ClientServices::broadcast_own(const M& message) {
 void ClientServices::send_status(double now_s, double start_wall_s, const SessionStatus& status) {
   if (!clients_ || now_s < next_status_wall_s_) return;
   next_status_wall_s_ = now_s + 1.0;
-  mavlink::msg::Heartbeat hb;
-  hb.type = static_cast<uint8_t>(mavlink::MavType::Generic);
-  hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
-  hb.system_status = static_cast<uint8_t>(status.paused ? mavlink::MavState::Standby : mavlink::MavState::Active);
-  hb.mavlink_version = mavlink::kMavlinkVersion;
-  broadcast_own(hb);
+  broadcast_own(mavlink::simulator_heartbeat(status.paused ? mavlink::MavState::Standby : mavlink::MavState::Active));
   const auto boot_ms = static_cast<uint32_t>((now_s - start_wall_s) * 1000.0);
   mavlink::msg::NamedValueFloat rtf;
   rtf.time_boot_ms = boot_ms;
-  set_name(rtf.name, kStatusRtfName);
+  mavlink::set_text(rtf.name, kStatusRtfName);
   rtf.value = static_cast<float>(status.recent_real_time_factor);
   broadcast_own(rtf);
   mavlink::msg::NamedValueInt late;
   late.time_boot_ms = boot_ms;
-  set_name(late.name, kStatusLateName);
+  mavlink::set_text(late.name, kStatusLateName);
   late.value = static_cast<int32_t>(std::min<uint64_t>(status.late_ticks, INT32_MAX));
   broadcast_own(late);
   mavlink::msg::NamedValueInt pause;
   pause.time_boot_ms = boot_ms;
-  set_name(pause.name, kStatusPauseName);
+  mavlink::set_text(pause.name, kStatusPauseName);
   pause.value = status.paused ? 1 : 0;
   broadcast_own(pause);
   send_doctor_status(boot_ms, status);
@@ -145,14 +133,14 @@ void ClientServices::send_doctor_status(uint32_t boot_ms, const SessionStatus& s
   auto named_float = [&](std::string_view name, double value) {
     mavlink::msg::NamedValueFloat m;
     m.time_boot_ms = boot_ms;
-    set_name(m.name, name);
+    mavlink::set_text(m.name, name);
     m.value = static_cast<float>(value);
     broadcast_own(m);
   };
   auto named_int = [&](std::string_view name, int32_t value) {
     mavlink::msg::NamedValueInt m;
     m.time_boot_ms = boot_ms;
-    set_name(m.name, name);
+    mavlink::set_text(m.name, name);
     m.value = value;
     broadcast_own(m);
   };

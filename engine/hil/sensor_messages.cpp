@@ -33,7 +33,7 @@ mavlink::msg::HilSensor make_hil_sensor(const sensors::SensorFrame& frame, uint6
     m.xgyro = static_cast<float>(frame.imu->gyro_FRD_rad_s.x());
     m.ygyro = static_cast<float>(frame.imu->gyro_FRD_rad_s.y());
     m.zgyro = static_cast<float>(frame.imu->gyro_FRD_rad_s.z());
-    m.temperature = static_cast<float>(frame.imu->temperature_c);
+    m.temperature = static_cast<float>(frame.imu->temperature_degC);
     m.fields_updated |= bits::kAccel | bits::kGyro;
   }
   if (frame.mag) {
@@ -43,9 +43,9 @@ mavlink::msg::HilSensor make_hil_sensor(const sensors::SensorFrame& frame, uint6
     m.fields_updated |= bits::kMag;
   }
   if (frame.baro) {
-    m.abs_pressure = mavlink::wire::pa_to_hpa(frame.baro->pressure_pa);
+    m.abs_pressure = mavlink::wire::Pa_to_hPa(frame.baro->pressure_Pa);
     m.pressure_alt = static_cast<float>(frame.baro->pressure_alt_m);
-    m.temperature = static_cast<float>(frame.baro->temperature_c);
+    m.temperature = static_cast<float>(frame.baro->temperature_degC);
     m.fields_updated |= bits::kBaro;
   }
   m.id = 0;

@@ -4,9 +4,11 @@
 
 #include <string>
 
+#include "base/common/severity.h"
+
 namespace hitl::hil {
 
-enum class Severity { Info, Warning, Error };
+using Severity = ::hitl::Severity;  // base/common/severity.h
 
 struct SessionEvent {
   Severity severity = Severity::Info;

@@ -10,6 +10,7 @@
 #include "engine/frames/frames.h"
 #include "engine/hil/snapshot_builder.h"
 #include "base/mavlink/enums.h"
+#include "base/mavlink/heartbeat.h"
 #include "base/mavlink/wire_units.h"
 #include "engine/telemetry/health.h"
 
@@ -72,12 +73,7 @@ void Session::Impl::send_messages(const sensors::SensorFrame& frame, uint64_t t_
   if (pilot) fly_pilot(model->state(), events);
   if (sim_time_s() + 1e-9 >= next_heartbeat_s) {
     next_heartbeat_s += 1.0;
-    mavlink::msg::Heartbeat hb;
-    hb.type = static_cast<uint8_t>(mavlink::MavType::Generic);
-    hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Invalid);
-    hb.system_status = static_cast<uint8_t>(mavlink::MavState::Active);
-    hb.mavlink_version = mavlink::kMavlinkVersion;
-    stack->send(hb);
+    stack->send(mavlink::simulator_heartbeat());
   }
 }
 

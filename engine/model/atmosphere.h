@@ -11,9 +11,9 @@ inline constexpr double kIsaLapseRate_K_m = 0.0065;
 inline constexpr double kIsaPressureExponent = 5.25588;  // g0 M / (R L)
 inline constexpr double kCelsiusToKelvin = 273.15;
 
-double isa_pressure_pa(const AtmosphereConfig& atmosphere, double alt_msl_m);
-double isa_temperature_c(const AtmosphereConfig& atmosphere, double alt_msl_m);
-/// The altitude at which the ISA pressure is `pressure_pa` (inverse of isa_pressure_pa).
-double isa_altitude_m(const AtmosphereConfig& atmosphere, double pressure_pa);
+double isa_pressure_Pa(const AtmosphereConfig& atmosphere, double alt_msl_m);
+double isa_temperature_degC(const AtmosphereConfig& atmosphere, double alt_msl_m);
+/// The altitude at which the ISA pressure is `pressure_Pa` (inverse of isa_pressure_Pa).
+double isa_altitude_m(const AtmosphereConfig& atmosphere, double pressure_Pa);
 
 }  // namespace hitl::model

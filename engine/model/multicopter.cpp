@@ -244,18 +244,19 @@ Expected<std::unique_ptr<Multicopter>> Multicopter::create(const VehicleConfig& 
 Multicopter::Multicopter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Multicopter::~Multicopter() = default;
 
+CheckedCommand check_motor_command(double u) {
+  if (!std::isfinite(u)) return {0.0, CommandFix::NonFinite};
+  if (u < 0.0 || u > 1.0) return {std::clamp(u, 0.0, 1.0), CommandFix::OutOfRange};
+  return {u, CommandFix::None};
+}
+
 void Multicopter::set_motor_commands(const MotorCommands& commands) {
   Impl& m = *impl_;
   for (std::size_t i = 0; i < commands.u.size(); ++i) {
-    double u = commands.u[i];
-    if (!std::isfinite(u)) {
-      ++m.counters.non_finite;
-      u = 0.0;
-    } else if (u < 0.0 || u > 1.0) {
-      ++m.counters.out_of_range;
-      u = std::clamp(u, 0.0, 1.0);
-    }
-    m.inputs.omega_ref_rad_s[i] = omega_reference_rad_s(m.vehicle.rotors[i], u, commands.armed);
+    const auto checked = check_motor_command(commands.u[i]);
+    if (checked.fix == CommandFix::NonFinite) ++m.counters.non_finite;
+    if (checked.fix == CommandFix::OutOfRange) ++m.counters.out_of_range;
+    m.inputs.omega_ref_rad_s[i] = omega_reference_rad_s(m.vehicle.rotors[i], checked.u, commands.armed);
   }
 }
 

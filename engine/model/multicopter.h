@@ -28,6 +28,15 @@ struct MotorCommands {
   bool armed = false;
 };
 
+/// One motor command made usable, the rule written once (the model and engine/hil's ActuatorInput
+/// both apply it): NaN/inf become 0 (NonFinite), values outside 0..1 are clamped (OutOfRange).
+enum class CommandFix { None, NonFinite, OutOfRange };
+struct CheckedCommand {
+  double u = 0.0;  ///< 0..1
+  CommandFix fix = CommandFix::None;
+};
+CheckedCommand check_motor_command(double u);
+
 /// What the engine did to bad inputs (it clamps, counts and carries on; it never prints).
 struct InputCounters {
   std::uint64_t non_finite = 0;    ///< NaN/inf commands, treated as 0

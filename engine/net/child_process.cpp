@@ -13,16 +13,12 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "base/common/clock.h"
+
 extern char** environ;
 
 namespace hitl::net {
 namespace {
-
-int64_t monotonic_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1000 + ts.tv_nsec / 1000000;
-}
 
 /// Reads what is waiting on a non-blocking pipe; false once it is at end of file.
 bool drain(int fd, std::string* sink) {

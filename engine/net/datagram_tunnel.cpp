@@ -9,20 +9,10 @@
 #include <cerrno>
 #include <cstring>
 
+#include "base/common/clock.h"
+
 namespace hitl::net {
 namespace {
-
-int64_t monotonic_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1000 + ts.tv_nsec / 1000000;
-}
-
-uint64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<uint64_t>(ts.tv_sec) * 1000000000ULL + static_cast<uint64_t>(ts.tv_nsec);
-}
 
 /// The handshake's view of the stream: the relay's hello, compared with ours.
 class HandshakeEvents : public adb::FramedStream::Events {

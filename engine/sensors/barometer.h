@@ -25,7 +25,7 @@ class Barometer {
   model::WorldConfig world_;
   std::uint64_t seed_;
   model::RandomStream rng_;
-  double drift_pa_ = 0.0;
+  double drift_Pa_ = 0.0;
   double last_t_s_ = -1.0;
 };
 

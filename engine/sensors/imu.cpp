@@ -44,7 +44,7 @@ ImuSample Imu::sample(const model::VehicleState& state, double t_s) {
   s.gyro_FRD_rad_s = gyro_noise_.apply(frames::flu_to_frd(w), dt_s);
   if (saturate(s.accel_FRD_m_s2, config_.accel_range_m_s2)) ++saturation_.accel;
   if (saturate(s.gyro_FRD_rad_s, config_.gyro_range_rad_s)) ++saturation_.gyro;
-  s.temperature_c = model::isa_temperature_c(world_.atmosphere, world_.home.alt_m + state.p_ENU_m.z());
+  s.temperature_degC = model::isa_temperature_degC(world_.atmosphere, world_.home.alt_m + state.p_ENU_m.z());
   return s;
 }
 

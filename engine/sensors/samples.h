@@ -13,7 +13,7 @@ struct ImuSample {
   double time_s = 0.0;
   Eigen::Vector3d accel_FRD_m_s2 = Eigen::Vector3d::Zero();  ///< specific force (level at rest: z = -g)
   Eigen::Vector3d gyro_FRD_rad_s = Eigen::Vector3d::Zero();
-  double temperature_c = 0.0;
+  double temperature_degC = 0.0;
 };
 
 struct MagSample {
@@ -23,8 +23,8 @@ struct MagSample {
 
 struct BaroSample {
   double time_s = 0.0;
-  double pressure_pa = 0.0;     ///< absolute pressure (HIL_SENSOR carries hPa)
-  double temperature_c = 0.0;
+  double pressure_Pa = 0.0;     ///< absolute pressure (HIL_SENSOR carries hPa)
+  double temperature_degC = 0.0;
   double pressure_alt_m = 0.0;  ///< ISA altitude of the measured pressure
 };
 

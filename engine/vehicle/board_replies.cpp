@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "base/mavlink/enums.h"
+#include "base/mavlink/text_field.h"
 
 namespace hitl::vehicle {
 namespace {
@@ -20,7 +21,7 @@ bool ends_with_prompt(const std::string& s) {
 
 }  // namespace
 
-std::string param_name(const std::array<char, 16>& id) { return std::string(id.data(), strnlen(id.data(), id.size())); }
+std::string param_name(const std::array<char, 16>& id) { return mavlink::text_of(id); }
 
 ParamValue param_value_of(const mavlink::msg::ParamValue& v) {
   return decode_param_float(v.param_value, v.param_type == mavlink::kMavParamTypeInt32 ? ParamType::Int32 : ParamType::Real32);

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <optional>
 
+#include "base/mavlink/text_field.h"
+
 namespace hitl::vehicle {
 namespace {
 namespace msg = mavlink::msg;
@@ -51,7 +53,7 @@ Expected<CommandOutcome> CommandClient::send(uint16_t command, const std::array<
   auto handler = [&](const mavlink::Frame& f) {
     if (f.is<msg::Statustext>()) {
       const auto t = f.as<msg::Statustext>();
-      outcome.statustexts.emplace_back(t.text.data(), strnlen(t.text.data(), t.text.size()));
+      outcome.statustexts.push_back(mavlink::text_of(t.text));
       return false;
     }
     if (!f.is<msg::CommandAck>()) return false;

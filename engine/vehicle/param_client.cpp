@@ -5,17 +5,13 @@
 #include <optional>
 
 #include "base/mavlink/enums.h"
+#include "base/mavlink/text_field.h"
 #include "engine/vehicle/board_replies.h"
 
 namespace hitl::vehicle {
 namespace {
 
 namespace msg = mavlink::msg;
-
-void put_name(std::array<char, 16>& id, const std::string& name) {
-  id.fill('\0');
-  std::memcpy(id.data(), name.data(), std::min<std::size_t>(name.size(), id.size()));
-}
 
 }  // namespace
 
@@ -58,7 +54,7 @@ Expected<ParamValue> ParamClient::get(const std::string& name) {
   read.target_system = link_.target_sysid();
   read.target_component = link_.target_compid();
   read.param_index = -1;
-  put_name(read.param_id, name);
+  mavlink::set_text(read.param_id, name);
   std::optional<ParamValue> value;
   for (int attempt = 0; attempt < kRetries && !value; ++attempt) {
     link_.send(read);
@@ -78,7 +74,7 @@ Expected<ParamValue> ParamClient::set(const std::string& name, const ParamValue&
   msg::ParamSet set;
   set.target_system = link_.target_sysid();
   set.target_component = link_.target_compid();
-  put_name(set.param_id, name);
+  mavlink::set_text(set.param_id, name);
   set.param_value = encode_param_float(value);
   set.param_type = static_cast<uint8_t>(value.type);
   std::optional<ParamValue> echo;

@@ -5,6 +5,7 @@
 
 #include "base/common/clock.h"
 #include "base/mavlink/messages.h"
+#include "base/mavlink/text_field.h"
 #include "engine/vehicle/patient_link.h"
 
 namespace hitl::vehicle {
@@ -15,7 +16,7 @@ namespace msg = mavlink::msg;
 constexpr double kRerequestAfter_s = 5.0;
 
 std::string statustext_string(const msg::Statustext& t) {
-  std::string text(t.text.data(), strnlen(t.text.data(), t.text.size()));
+  std::string text = mavlink::text_of(t.text);
   for (char& c : text)  // nothing from the network reaches the terminal as a control character
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = ' ';
   return text;

@@ -10,14 +10,10 @@
 #include <cerrno>
 #include <cstring>
 
+#include "base/common/clock.h"
+
 namespace hitl::adb {
 namespace {
-
-int64_t monotonic_ms() {
-  timespec ts{};
-  ::clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1000 + ts.tv_nsec / 1000000;
-}
 
 std::string address_text(const sockaddr_in& a) {
   char host[INET_ADDRSTRLEN] = "?";

@@ -11,17 +11,12 @@
 #include <cstring>
 #include <vector>
 
+#include "base/common/clock.h"
 #include "target/vio-server/odometry_to_vio.h"
 #include "target/vio-server/raw_fifo_pipe.h"
 
 namespace hitl::vio {
 namespace {
-
-int64_t monotonic_ns() {
-  timespec ts{};
-  ::clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 using Clock = std::chrono::steady_clock;
 
@@ -120,7 +115,7 @@ Expected<std::unique_ptr<VioServer>> VioServer::start(const VioServerOptions& op
 
 void VioServer::on_odometry(const mavlink::msg::Odometry& odometry) {
   Impl& s = *impl_;
-  auto vio = vio_from_odometry(odometry, monotonic_ns());
+  auto vio = vio_from_odometry(odometry, static_cast<int64_t>(monotonic_ns()));
   if (!vio.ok()) {
     ++s.invalid_odometry;
     s.invalid_log.note(s.log, vio.error().message);

@@ -15,7 +15,7 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 ImuSample to_input(const sensors::ImuSample& s) { return {to_us(s.time_s), s.accel_FRD_m_s2, s.gyro_FRD_rad_s}; }
 MagSample to_input(const sensors::MagSample& s) { return {to_us(s.time_s), s.mag_FRD_gauss}; }
-BaroSample to_input(const sensors::BaroSample& s) { return {to_us(s.time_s), s.pressure_pa, s.temperature_c}; }
+BaroSample to_input(const sensors::BaroSample& s) { return {to_us(s.time_s), s.pressure_Pa, s.temperature_degC}; }
 GpsSample to_input(const sensors::GpsSample& s) {
   GpsSample g;
   g.time_us = to_us(s.time_s);

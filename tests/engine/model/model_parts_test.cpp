@@ -7,6 +7,7 @@
 #include "engine/model/atmosphere.h"
 #include "engine/model/ground_contact.h"
 #include "engine/model/motor_model.h"
+#include "engine/model/multicopter.h"
 #include "engine/model/random_stream.h"
 #include "engine/model/wind.h"
 #include "engine/model/x500_defaults.h"
@@ -20,13 +21,28 @@ using test::sample_sigma;
 TEST(Atmosphere, IsaMatchesTheX500Formula) {
   const AtmosphereConfig isa = default_world_config().atmosphere;
   for (double h : {0.0, 488.0, 1000.0, 5000.0}) {
-    EXPECT_NEAR(isa_pressure_pa(isa, h), 101325.0 * std::pow(1.0 - 2.25577e-5 * h, 5.25588), 0.05) << h;
-    EXPECT_NEAR(isa_altitude_m(isa, isa_pressure_pa(isa, h)), h, 1e-6);
+    EXPECT_NEAR(isa_pressure_Pa(isa, h), 101325.0 * std::pow(1.0 - 2.25577e-5 * h, 5.25588), 0.05) << h;
+    EXPECT_NEAR(isa_altitude_m(isa, isa_pressure_Pa(isa, h)), h, 1e-6);
   }
-  EXPECT_NEAR(isa_temperature_c(isa, 0.0), 15.0, 1e-12);
-  EXPECT_NEAR(isa_temperature_c(isa, 1000.0), 8.5, 1e-12);
+  EXPECT_NEAR(isa_temperature_degC(isa, 0.0), 15.0, 1e-12);
+  EXPECT_NEAR(isa_temperature_degC(isa, 1000.0), 8.5, 1e-12);
   // About 12 Pa per metre near the ground.
-  EXPECT_NEAR(isa_pressure_pa(isa, 0.0) - isa_pressure_pa(isa, 1.0), 12.0, 0.1);
+  EXPECT_NEAR(isa_pressure_Pa(isa, 0.0) - isa_pressure_Pa(isa, 1.0), 12.0, 0.1);
+}
+
+TEST(MotorCommand, NonFiniteBecomesZeroAndOutOfRangeIsClampedOnce) {
+  EXPECT_EQ(check_motor_command(0.5).u, 0.5);
+  EXPECT_EQ(check_motor_command(0.5).fix, CommandFix::None);
+  EXPECT_EQ(check_motor_command(0.0).fix, CommandFix::None);
+  EXPECT_EQ(check_motor_command(1.0).fix, CommandFix::None);
+  EXPECT_EQ(check_motor_command(1.5).u, 1.0);
+  EXPECT_EQ(check_motor_command(1.5).fix, CommandFix::OutOfRange);
+  EXPECT_EQ(check_motor_command(-0.1).u, 0.0);
+  EXPECT_EQ(check_motor_command(-0.1).fix, CommandFix::OutOfRange);
+  for (double bad : {std::nan(""), double{INFINITY}, -double{INFINITY}}) {
+    EXPECT_EQ(check_motor_command(bad).u, 0.0);
+    EXPECT_EQ(check_motor_command(bad).fix, CommandFix::NonFinite);
+  }
 }
 
 TEST(MotorModel, CommandMapsToSpeedReference) {

@@ -36,8 +36,8 @@ TEST(Engine, AtRestAltitudeAndPressureConstantAccelMinusG) {
     ASSERT_NEAR(f.imu->accel_FRD_m_s2.z(), -9.80665, 1e-6);
     ASSERT_NEAR(f.imu->accel_FRD_m_s2.head<2>().norm(), 0.0, 1e-6);
     if (f.baro) {
-      if (p0 < 0) p0 = f.baro->pressure_pa;
-      ASSERT_NEAR(f.baro->pressure_pa, p0, 0.012);  // 1 mm of altitude
+      if (p0 < 0) p0 = f.baro->pressure_Pa;
+      ASSERT_NEAR(f.baro->pressure_Pa, p0, 0.012);  // 1 mm of altitude
     }
   }
 }
@@ -79,16 +79,16 @@ TEST(Engine, ClimbShowsInBaroGpsAndTruth) {
   while (!first.baro || !first.gps) first = sim.step();
   sim.plant->set_motor_commands({{0.85, 0.85, 0.85, 0.85}, true});
   sensors::SensorFrame last;
-  double last_pressure = first.baro->pressure_pa, last_alt = first.gps->alt_m;
+  double last_pressure = first.baro->pressure_Pa, last_alt = first.gps->alt_m;
   for (int i = 0; i < 750; ++i) {  // 3 s
     last = sim.step();
-    if (last.baro) last_pressure = last.baro->pressure_pa;
+    if (last.baro) last_pressure = last.baro->pressure_Pa;
     if (last.gps) last_alt = last.gps->alt_m;
   }
   const double climbed_m = -last.truth.p_NED_m.z() + first.truth.p_NED_m.z();
   EXPECT_GT(climbed_m, 2.0);
   EXPECT_NEAR(last_alt - first.gps->alt_m, climbed_m, 0.5);  // GPS sampled up to 1/30 s earlier
-  EXPECT_LT(last_pressure, first.baro->pressure_pa - 10.0 * climbed_m);
+  EXPECT_LT(last_pressure, first.baro->pressure_Pa - 10.0 * climbed_m);
   EXPECT_LT(last.truth.v_NED_m_s.z(), -0.5);  // climbing: NED velocity down is negative
 }
 

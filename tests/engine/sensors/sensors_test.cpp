@@ -34,7 +34,7 @@ TEST(Imu, LevelAtRestReadsMinusGInFrdExactlyWithoutNoise) {
   EXPECT_EQ(s.accel_FRD_m_s2, Eigen::Vector3d(0, 0, -kG));
   EXPECT_EQ(s.gyro_FRD_rad_s, Eigen::Vector3d::Zero());
   // ISA temperature at home (488 m): 15 - 6.5 * 0.488 deg C.
-  EXPECT_NEAR(s.temperature_c, 15.0 - 0.0065 * 488.0, 1e-9);
+  EXPECT_NEAR(s.temperature_degC, 15.0 - 0.0065 * 488.0, 1e-9);
 }
 
 TEST(Imu, NoseUpPitchRateIsPositiveY) {
@@ -117,12 +117,12 @@ TEST(Barometer, IsaPressureAtAltitudeExactlyWithoutNoise) {
   Barometer baro(noiseless().sensors.baro, world, 1);
   model::VehicleState s = at_rest();
   const BaroSample ground = baro.sample(s, 0.1);
-  EXPECT_NEAR(ground.pressure_pa, 101325.0 * std::pow(1.0 - 2.25577e-5 * 488.0, 5.25588), 0.05);
+  EXPECT_NEAR(ground.pressure_Pa, 101325.0 * std::pow(1.0 - 2.25577e-5 * 488.0, 5.25588), 0.05);
   EXPECT_NEAR(ground.pressure_alt_m, 488.0, 1e-6);
-  EXPECT_NEAR(ground.temperature_c, 15.0 - 0.0065 * 488.0, 1e-9);
+  EXPECT_NEAR(ground.temperature_degC, 15.0 - 0.0065 * 488.0, 1e-9);
   s.p_ENU_m.z() = 10.0;
   const BaroSample up = baro.sample(s, 0.2);
-  EXPECT_NEAR(ground.pressure_pa - up.pressure_pa, 10.0 * 11.5, 5.0);  // ~11.5 Pa/m at 500 m
+  EXPECT_NEAR(ground.pressure_Pa - up.pressure_Pa, 10.0 * 11.5, 5.0);  // ~11.5 Pa/m at 500 m
   EXPECT_NEAR(up.pressure_alt_m, 498.0, 1e-6);
 }
 
@@ -228,7 +228,7 @@ TEST(SensorNoise, BaroSigmaIsTheConfiguredSigma) {
   Barometer baro(config, model::default_world_config(), 13);
   const model::VehicleState s = at_rest();
   std::vector<double> p;
-  for (int k = 1; k <= 6000; ++k) p.push_back(baro.sample(s, k / config.rate_hz).pressure_pa);  // 600 s
+  for (int k = 1; k <= 6000; ++k) p.push_back(baro.sample(s, k / config.rate_hz).pressure_Pa);  // 600 s
   EXPECT_NEAR(sample_sigma(p), config.noise_pa, 0.05 * config.noise_pa);
 }
 
