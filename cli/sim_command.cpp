@@ -148,7 +148,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
       if (tunnel) j["adb"] = adb_tunnel_json(*tunnel);
       print_json_line(j);
     }
-    return kExitFailed;
+    return exit_code(end.error());
   }
   if (global.json) {
     auto j = snapshot_json(snap, true);
