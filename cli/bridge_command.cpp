@@ -124,7 +124,7 @@ int run(const GlobalOptions& g, BridgeOptions& o) {
   for (const auto& text : o.endpoints) {
     auto spec = bridge::parse_endpoint(text);
     if (!spec) {
-      log_error("bridge", "--endpoint " + text + ": " + spec.error().message);
+      log_error("bridge", "--endpoint " + spec.error().message);
       return exit_code(spec.error());
     }
     o.config.endpoints.push_back(*spec);
