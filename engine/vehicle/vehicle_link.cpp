@@ -128,7 +128,9 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
     if (!board) return board.error().prefixed("the board's address: ");
     auto ep = open_udp("0.0.0.0", options.local_port, *board, net::PartnerPolicy::Fixed, "--local-port");
     if (!ep)
-      return Error::unavailable("local port " + std::to_string(options.local_port) +
+      // Failed, not Unavailable: the port is taken by another command talking to the board (the
+      // board is owned, as "no board answered"), and hitl params/arm/... exit 1 for it.
+      return Error::failed("local port " + std::to_string(options.local_port) +
                    " is busy: another hitl command is talking to the board; run `hitl bridge` and let every command "
                    "go through it (" + ep.error().message + ")");
     link = make(std::move(ep.value()), "direct to " + board->to_string() + " from port " + std::to_string(options.local_port));
