@@ -28,7 +28,7 @@ int run_arm(const GlobalOptions& g, const ArmOptions& o, bool arm) {
   auto link = vehicle::VehicleLink::connect(o.link);
   if (!link) {
     log_error(cmd, link.error().message);
-    return kExitFailed;
+    return exit_code(link.error());
   }
   log_info(g, std::string("hitl ") + cmd + ": autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
   vehicle::Action action(**link);

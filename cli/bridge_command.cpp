@@ -100,19 +100,19 @@ class Printer : public bridge::BridgeObserver {
 };
 
 /// The bridge on its own thread, the dashboard on this one; q, a signal or the bridge ending close it.
-Status run_with_dashboard(const GlobalOptions& g, const bridge::BridgeConfig& config, bool* opened) {
+Status run_with_dashboard(const GlobalOptions& g, const bridge::BridgeConfig& config) {
   tui::BridgeDashboard dashboard(config);
   std::atomic<bool> stop{false};
   Status ran = Ok{};
   std::thread loop([&] {
-    ran = bridge::run_bridge(config, dashboard, stop, opened);
+    ran = bridge::run_bridge(config, dashboard, stop, nullptr);
     dashboard.mark_finished(ran ? std::string("the bridge ended") : "error: " + ran.error().message);
   });
   auto shown = tui::run_dashboard(dashboard, &dashboard);
   dashboard.shutdown();
   stop.store(true);
   loop.join();
-  if (!shown) return Error{"--tui: " + shown.error().message};
+  if (!shown) return shown.error().prefixed("--tui: ");
   if (shown->reason == tui::DashboardEnd::Reason::Signal) std::cerr << "hitl bridge: stopped by " << shown->detail << '\n';
   if (g.verbosity >= 1)
     log_info(g, tui::format("hitl bridge: the dashboard drew %llu frames, %.2f ms each on average, %.2f ms at most",
@@ -124,8 +124,8 @@ int run(const GlobalOptions& g, BridgeOptions& o) {
   for (const auto& text : o.endpoints) {
     auto spec = bridge::parse_endpoint(text);
     if (!spec) {
-      log_error("bridge", spec.error().message);
-      return kExitUsage;
+      log_error("bridge", "--endpoint " + spec.error().message);
+      return exit_code(spec.error());
     }
     o.config.endpoints.push_back(*spec);
   }
@@ -142,7 +142,7 @@ int run(const GlobalOptions& g, BridgeOptions& o) {
     auto opened = open_adb_tunnel(g, "bridge", o.adb);
     if (!opened) {
       log_error("bridge", "--adb: " + opened.error().message);
-      return kExitFailed;
+      return exit_code(opened.error());
     }
     tunnel = std::move(opened.value());
     log_info(g, "hitl bridge: " + tunnel->describe());
@@ -151,13 +151,12 @@ int run(const GlobalOptions& g, BridgeOptions& o) {
   }
   Status st = Ok{};
   Printer printer(g);
-  bool opened = false;
   bool signalled = o.tui;  // the dashboard ends on q or a signal, never by --duration alone
   if (o.tui) {
-    st = run_with_dashboard(g, o.config, &opened);
+    st = run_with_dashboard(g, o.config);
   } else {
     const auto& stop = stop_flag_on_signals();
-    st = bridge::run_bridge(o.config, printer, stop, &opened);
+    st = bridge::run_bridge(o.config, printer, stop, nullptr);
     signalled = stop.load();
   }
   if (g.json) {
@@ -173,7 +172,7 @@ int run(const GlobalOptions& g, BridgeOptions& o) {
   }
   if (!st) {
     log_error("bridge", st.error().message);
-    return opened ? kExitFailed : kExitUsage;  // a port in use or a bad address: 2, as in every command
+    return exit_code(st.error());  // a port in use or a bad address: 2, as in every command
   }
   return kExitOk;
 }

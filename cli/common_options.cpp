@@ -69,7 +69,7 @@ Expected<mavlink::MessageSet> load_messages(const GlobalOptions& options) {
   files.insert(files.end(), options.dialects.begin(), options.dialects.end());
   for (const auto& file : files) {
     auto info = mavlink::load_dialect(file, set);
-    if (!info) return Error{"--dialect: " + info.error().message};
+    if (!info) return info.error().prefixed("--dialect: ");
   }
   return set;
 }

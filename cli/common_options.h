@@ -24,6 +24,21 @@ inline constexpr int kExitFailed = 1;
 /// opened (a port in use): the command could not start.
 inline constexpr int kExitUsage = 2;
 
+/// The exit code for an engine error, from its kind: the one place kinds meet the table above.
+/// Usage (the command line), Input (a file or value) and Unavailable (a port in use, an address that
+/// cannot be opened) stopped the command before it ran: 2. Failed (no answer, refused, a check
+/// failed, the adb path did not come up) is a command that ran: 1.
+constexpr int exit_code(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::Usage: return kExitUsage;
+    case ErrorKind::Input: return kExitUsage;
+    case ErrorKind::Unavailable: return kExitUsage;
+    case ErrorKind::Failed: return kExitFailed;
+  }
+  return kExitFailed;
+}
+inline int exit_code(const Error& error) { return exit_code(error.kind); }
+
 struct GlobalOptions {
   bool json = false;                   ///< --json: JSON lines on stdout, a final summary object last
   int verbosity = 0;                   ///< -v (repeatable)

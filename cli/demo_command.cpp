@@ -119,7 +119,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
                                               : vehicle::Trajectory::load(o.trajectory_file);
   if (!trajectory) {
     log_error("demo", trajectory.error().message);
-    return kExitUsage;
+    return exit_code(trajectory.error());
   }
   // Free loopback ports for the board's instances and the simulator, so a demo never collides
   // with a real session; the clients port is the usual one when free, so `hitl arm` etc. work.
@@ -131,7 +131,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
     auto p = free_port();
     if (!p) {
       log_error("demo", p.error().message);
-      return kExitUsage;  // a port that cannot be opened: 2, as in every command
+      return exit_code(p.error());
     }
     *port = *p;
   }
@@ -153,7 +153,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
       auto p = free_port();
       if (!p) {
         log_error("demo", p.error().message);
-        return kExitUsage;  // a port that cannot be opened: 2, as in every command
+        return exit_code(p.error());
       }
       session.clients_port = *p;
     }
@@ -162,12 +162,12 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   auto board = target::Board::create(board_config);
   if (!board) {
     log_error("demo", board.error().message);
-    return kExitUsage;  // a port that cannot be opened: 2, as in every command
+    return exit_code(board.error());
   }
   auto sim = hil::Session::create(session);
   if (!sim) {
     log_error("demo", sim.error().message);
-    return kExitUsage;  // a port that cannot be opened: 2, as in every command
+    return exit_code(sim.error());
   }
   log_info(g, "hitl demo: an emulated VOXL2 board (not PX4) and the Simbody x500 in lockstep, flying " +
                   (o.trajectory_file.empty() ? std::string("docs/examples/square.json") : o.trajectory_file) +
@@ -202,7 +202,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   board_thread.join();
   if (!end) {
     log_error("demo", end.error().message);
-    return kExitFailed;
+    return exit_code(end.error());
   }
   const auto s = (*sim)->snapshot();
   const auto b = (*board)->snapshot();

@@ -79,14 +79,14 @@ int run_fly(const GlobalOptions& g, const FlyOptions& o, const std::string& acti
     auto t = vehicle::Trajectory::load(o.trajectory_file);
     if (!t) {
       log_error("fly", t.error().message);
-      return kExitUsage;
+      return exit_code(t.error());
     }
     trajectory = std::move(t.value());
   }
   auto link = vehicle::VehicleLink::connect(o.link);
   if (!link) {
     log_error("fly", link.error().message);
-    return kExitFailed;
+    return exit_code(link.error());
   }
   log_info(g, "hitl fly " + action + ": autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
   if (trajectory) return fly_trajectory(g, o, **link, std::move(*trajectory));

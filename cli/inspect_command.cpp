@@ -201,7 +201,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   auto messages = load_messages(global);
   if (!messages) {
     log_error(cmd, messages.error().message);
-    return kExitUsage;
+    return exit_code(messages.error());
   }
   std::vector<uint32_t> show_ids;
   for (const auto& name : opt.show) {
@@ -216,8 +216,8 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   if (!opt.expect.empty()) {
     auto parsed = inspect::parse_expectations(opt.expect, *messages);
     if (!parsed) {
-      log_error(cmd, parsed.error().message);
-      return kExitUsage;
+      log_error(cmd, "--expect: " + parsed.error().message);
+      return exit_code(parsed.error());
     }
     expectations = std::move(parsed.value());
   }
@@ -245,7 +245,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
     auto key = mavlink::parse_signing_key(opt.signing_key);
     if (!key) {
       log_error(cmd, "--signing-key: " + key.error().message);
-      return kExitUsage;
+      return exit_code(key.error());
     }
     config.parser.signing_key = *key;
     config.parser.accept_unsigned = !opt.require_signed;
@@ -255,7 +255,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   auto inspector = inspect::Inspector::open(config, *messages);
   if (!inspector) {
     log_error(cmd, inspector.error().message);
-    return kExitUsage;
+    return exit_code(inspector.error());
   }
   const auto& stop = stop_flag_on_signals();
   const char* verb = opt.port ? "listening on " : (opt.connect.empty() ? "reading " : "sending HEARTBEATs to, and listening for, ");
@@ -268,7 +268,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   auto end = opt.tui ? run_with_dashboard(**inspector, printer, opt, expectations) : (*inspector)->run(stop, printer);
   if (!end) {
     log_error(cmd, end.error().message);
-    return kExitFailed;
+    return exit_code(end.error());
   }
   const auto summary = (*inspector)->summary();
   const auto results = inspect::check_expectations(summary, expectations, opt.tolerance_pct);

@@ -75,18 +75,18 @@ struct Report {
   }
 };
 
-/// Connects and downloads, saying how; an error line and nullopt on failure.
+/// Connects and downloads, saying how; an error line and the error on failure.
 struct Session {
   std::unique_ptr<vehicle::VehicleLink> link;
   std::unique_ptr<vehicle::ParamClient> client;
 };
 
-std::optional<Session> open(Report& report, const ParamsOptions& o) {
+Expected<Session> open(Report& report, const ParamsOptions& o) {
   const GlobalOptions& g = report.g;
   auto link = vehicle::VehicleLink::connect(o.link);
   if (!link) {
     report.fail(link.error().message);
-    return std::nullopt;
+    return link.error();
   }
   log_info(g, "hitl params: autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
   Session s;
@@ -185,11 +185,11 @@ int run_action(Report& report, const ParamsOptions& o, const std::string& action
     file.emplace(vehicle::load_params_file(o.file));
     if (!*file) {
       report.fail((*file).error().message);
-      return kExitUsage;
+      return exit_code((*file).error());
     }
   }
   auto s = open(report, o);
-  if (!s) return kExitFailed;
+  if (!s) return exit_code(s.error());
   if (action == "show" || action == "export") {
     auto all = download(report, *s);
     if (!all) return kExitFailed;
@@ -218,7 +218,7 @@ int run_action(Report& report, const ParamsOptions& o, const std::string& action
     auto v = s->client->get(upper(o.name));
     if (!v) {
       report.fail(explain_get_failure(*s, upper(o.name), v.error().message));
-      return kExitFailed;
+      return exit_code(v.error());
     }
     if (g.json) report.summary({{"name", upper(o.name)}, {"value", to_json(*v)}});
     else std::cout << v->to_string() << '\n';
@@ -229,17 +229,17 @@ int run_action(Report& report, const ParamsOptions& o, const std::string& action
     auto current = s->client->get(name);
     if (!current) {
       report.fail(explain_get_failure(*s, name, current.error().message));
-      return kExitFailed;
+      return exit_code(current.error());
     }
     const auto wanted = vehicle::parse_param_value(o.value, current->type);
     if (!wanted) {
       report.fail("set " + name + ": " + wanted.error().message);
-      return kExitUsage;
+      return exit_code(wanted.error());
     }
     auto r = s->client->set(name, *wanted);
     if (!r) {
       report.fail(r.error().message);
-      return kExitFailed;
+      return exit_code(r.error());
     }
     if (g.json) report.summary({{"name", name}, {"value", to_json(*r)}, {"previous", to_json(*current)}});
     else std::cout << name << ": " << current->to_string() << " -> " << r->to_string() << '\n';

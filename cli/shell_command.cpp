@@ -47,7 +47,7 @@ int run_shell(const GlobalOptions& g, const ShellOptions& o, ShellReport& report
   auto link = vehicle::VehicleLink::connect(o.link);
   if (!link) {
     report.fail(link.error().message);
-    return kExitFailed;
+    return exit_code(link.error());
   }
   log_info(g, "hitl shell: autopilot " + std::to_string((*link)->target_sysid()) + " " + (*link)->description());
   vehicle::ShellClient shell(**link);

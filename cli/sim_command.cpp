@@ -51,20 +51,20 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
                                           : model::load_vehicle_config(opt.vehicle_file);
   if (!vehicle) {
     log_error(cmd, "--vehicle: " + vehicle.error().message);
-    return kExitUsage;
+    return exit_code(vehicle.error());
   }
   auto world = opt.world_file.empty() ? Expected<model::WorldConfig>(model::default_world_config())
                                       : model::load_world_config(opt.world_file);
   if (!world) {
     log_error(cmd, "--world: " + world.error().message);
-    return kExitUsage;
+    return exit_code(world.error());
   }
   std::optional<vehicle::Trajectory> for_f_key;  // with the dashboard the trajectory waits for the f key
   if (!opt.trajectory_file.empty()) {
     auto trajectory = vehicle::Trajectory::load(opt.trajectory_file);
     if (!trajectory) {
       log_error(cmd, "-t: " + trajectory.error().message);
-      return kExitUsage;
+      return exit_code(trajectory.error());
     }
     if (opt.tui) for_f_key = std::move(trajectory.value());
     else cfg.trajectory = std::move(trajectory.value());
@@ -87,7 +87,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     auto port = net::parse_port(spec.substr(colon + 1), "--px4-sitl");
     if (!port) {
       log_error(cmd, port.error().message);
-      return kExitUsage;
+      return exit_code(port.error());
     }
     cfg.link = kind == "tcp" ? hil::FlightStackLink::SitlTcp : hil::FlightStackLink::SitlUdp;
     cfg.sitl_port = *port;
@@ -109,7 +109,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     auto opened = open_adb_tunnel(global, cmd, opt.adb);
     if (!opened) {
       log_error(cmd, "--adb: " + opened.error().message);
-      return kExitFailed;
+      return exit_code(opened.error());
     }
     tunnel = std::move(opened.value());
     log_info(global, "hitl sim: " + tunnel->describe());
@@ -122,7 +122,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   auto session = hil::Session::create(cfg);
   if (!session) {
     log_error(cmd, session.error().message);
-    return kExitUsage;
+    return exit_code(session.error());
   }
   const auto& stop = stop_flag_on_signals();
   log_info(global, "hitl sim: " + (*session)->describe() + (opt.tui ? "" : " (Ctrl-C to stop)"));
@@ -148,7 +148,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
       if (tunnel) j["adb"] = adb_tunnel_json(*tunnel);
       print_json_line(j);
     }
-    return kExitFailed;
+    return exit_code(end.error());
   }
   if (global.json) {
     auto j = snapshot_json(snap, true);

@@ -58,7 +58,7 @@ int run_target(const GlobalOptions& global, const target::BoardConfig& config) {
   auto board = target::Board::create(config);
   if (!board) {
     log_error("target", board.error().message);
-    return kExitUsage;
+    return exit_code(board.error());
   }
   const auto& stop = stop_flag_on_signals();
   log_info(global, "hitl target: an EMULATED VOXL2 / M0197 board (not PX4): " + (*board)->describe() + " (Ctrl-C to stop)");
@@ -66,7 +66,7 @@ int run_target(const GlobalOptions& global, const target::BoardConfig& config) {
   auto end = (*board)->run(stop, printer);
   if (!end) {
     log_error("target", end.error().message);
-    return kExitFailed;
+    return exit_code(end.error());
   }
   const auto s = (*board)->snapshot();
   if (global.json) {

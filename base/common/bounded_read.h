@@ -26,20 +26,20 @@ inline std::string byte_size_text(std::size_t bytes) {
 }
 
 /// The contents of `path` (`what` names it in errors: "trajectory", "parameter file", ...), or an
-/// error when it cannot be opened, is a directory, or holds more than `max_bytes`.
+/// Input error when it cannot be opened, is a directory, or holds more than `max_bytes`.
 inline Expected<std::string> read_bounded_file(const std::string& path, const std::string& what, std::size_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{"cannot read " + what + " '" + path + "': " + std::strerror(errno)};
+  if (!in) return Error::input("cannot read " + what + " '" + path + "': " + std::strerror(errno));
   std::string text;
   char chunk[65536];
   while (in) {
     in.read(chunk, sizeof chunk);
     text.append(chunk, static_cast<std::size_t>(in.gcount()));
     if (text.size() > max_bytes)
-      return Error{what + " '" + path + "' is larger than " + byte_size_text(max_bytes) + ", the limit for a " + what +
-                   " (an endless file such as /dev/zero?)"};
+      return Error::input(what + " '" + path + "' is larger than " + byte_size_text(max_bytes) + ", the limit for a " + what +
+                          " (an endless file such as /dev/zero?)");
   }
-  if (in.bad()) return Error{"cannot read " + what + " '" + path + "': " + std::strerror(errno)};
+  if (in.bad()) return Error::input("cannot read " + what + " '" + path + "': " + std::strerror(errno));
   return text;
 }
 

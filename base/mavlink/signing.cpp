@@ -21,7 +21,7 @@ constexpr int64_t kSigningEpochUnix_s = 1420070400;
 }  // namespace
 
 Expected<SigningKey> parse_signing_key(std::string_view text) {
-  if (text.empty()) return Error{"the signing key is empty"};
+  if (text.empty()) return Error::input("the signing key is empty");
   SigningKey key{};
   bool hex = text.size() == 64;
   for (std::size_t i = 0; hex && i < 32; ++i) {

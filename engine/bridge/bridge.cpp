@@ -47,7 +47,7 @@ Expected<std::unique_ptr<net::Link>> open_endpoint_link(const EndpointSpec& spec
   const std::string name = "--endpoint " + spec.text;
   if (spec.kind == EndpointSpec::Kind::Tcp) {
     auto a = net::SocketAddress::resolve(spec.host, spec.port);
-    if (!a) return Error{name + ": " + a.error().message};
+    if (!a) return a.error().prefixed(name + ": ");
     net::TcpClientLink::Config c;
     c.server = *a;
     c.name = name;
@@ -61,7 +61,7 @@ Expected<std::unique_ptr<net::Link>> open_endpoint_link(const EndpointSpec& spec
   c.endpoint.name = name;
   if (spec.kind == EndpointSpec::Kind::Udp) {
     auto a = net::SocketAddress::resolve(spec.host, spec.port);
-    if (!a) return Error{name + ": " + a.error().message};
+    if (!a) return a.error().prefixed(name + ": ");
     c.endpoint.peer = *a;
     c.endpoint.policy = net::PartnerPolicy::Fixed;
     c.hear_peer_only = true;
@@ -82,7 +82,7 @@ class Bridge {
 
   Status open() {
     auto target = net::SocketAddress::resolve(config_.board_ip, config_.board_port);
-    if (!target) return Error{"-i " + config_.board_ip + ": " + target.error().message};
+    if (!target) return target.error().prefixed("the board's address " + config_.board_ip + ": ");
     board_address_ = *target;
     net::UdpLink::Config c;
     c.endpoint.bind_port = config_.local_port;
@@ -91,13 +91,13 @@ class Bridge {
     c.endpoint.name = "the board link's local port (--local-port)";
     c.hear_peer_only = true;  // the board answers from its own port; anyone else is not the board
     auto ep = net::UdpLink::open(c);
-    if (!ep) return Error{ep.error().message + " (a hitl sim, another hitl bridge or a direct command owns it?)"};
+    if (!ep) return ep.error().suffixed(" (a hitl sim, another hitl bridge or a direct command owns it?)");
     board_ = std::move(ep.value());
     board_link_ = router_.add_link("board", [this](std::span<const uint8_t> bytes, const auto&) { (void)board_->send(bytes); });
 
     if (config_.clients_port != 0) {
       auto cp = net::ClientPort::open(config_.clients_bind, config_.clients_port, {});
-      if (!cp) return Error{cp.error().message + " (is a hitl sim or another hitl bridge running? --clients 0 disables)"};
+      if (!cp) return cp.error().suffixed(" (is a hitl sim or another hitl bridge running? --clients 0 disables)");
       clients_.emplace(std::move(cp.value()));
       clients_link_ = router_.add_link(
           "clients", [this](std::span<const uint8_t> bytes, const std::optional<net::SocketAddress>& except) {

@@ -7,24 +7,25 @@ namespace hitl::bridge {
 Expected<EndpointSpec> parse_endpoint(std::string_view text) {
   EndpointSpec spec;
   spec.text = std::string(text);
+  const std::string what = "'" + spec.text + "'";  // the value, not the option it came from
   const auto colon = text.find(':');
   if (colon == std::string_view::npos)
-    return Error{"--endpoint " + spec.text + ": expected udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT"};
+    return Error::input(what + ": expected udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT");
   const std::string_view scheme = text.substr(0, colon);
   const std::string_view rest = text.substr(colon + 1);
   if (scheme == "udpin") {
-    auto port = net::parse_port(rest, "--endpoint " + spec.text);
+    auto port = net::parse_port(rest, what);
     if (!port) return port.error();
     spec.kind = EndpointSpec::Kind::UdpIn;
     spec.port = *port;
     return spec;
   }
   if (scheme != "udp" && scheme != "tcp")
-    return Error{"--endpoint " + spec.text + ": unknown kind '" + std::string(scheme) + "' (udp, udpin or tcp)"};
+    return Error::input(what + ": unknown kind '" + std::string(scheme) + "' (udp, udpin or tcp)");
   const auto last = rest.rfind(':');
   if (last == std::string_view::npos || last == 0)
-    return Error{"--endpoint " + spec.text + ": expected " + std::string(scheme) + ":HOST:PORT"};
-  auto port = net::parse_port(rest.substr(last + 1), "--endpoint " + spec.text);
+    return Error::input(what + ": expected " + std::string(scheme) + ":HOST:PORT");
+  auto port = net::parse_port(rest.substr(last + 1), what);
   if (!port) return port.error();
   spec.kind = scheme == "udp" ? EndpointSpec::Kind::Udp : EndpointSpec::Kind::Tcp;
   spec.host = std::string(rest.substr(0, last));

@@ -18,7 +18,7 @@ Expected<std::unique_ptr<ClientServices>> ClientServices::open(const SessionConf
   auto s = std::unique_ptr<ClientServices>(new ClientServices(config, messages, stack, traffic, recording));
   if (config.vio) {
     auto vio_target = net::SocketAddress::resolve(config.vio_ip.empty() ? config.target_ip : config.vio_ip, config.vio_port);
-    if (!vio_target) return Error{"--vio-ip: " + vio_target.error().message};
+    if (!vio_target) return vio_target.error().prefixed("the VIO address: ");
     net::UdpLink::Config c;
     c.endpoint.name = "VIO link";
     c.endpoint.bind_address = config.bind_address;
@@ -37,7 +37,7 @@ Expected<std::unique_ptr<ClientServices>> ClientServices::open(const SessionConf
   }
   if (config.clients_port != 0 || !fixed.empty()) {
     auto cp = net::ClientPort::open(config.clients_bind, config.clients_port, fixed);
-    if (!cp) return Error{cp.error().message + " (is another hitl sim or hitl bridge running? --clients 0 disables)"};
+    if (!cp) return cp.error().suffixed(" (is another hitl sim or hitl bridge running? --clients 0 disables)");
     s->clients_.emplace(std::move(cp.value()));
     ClientServices* self = s.get();
     s->board_link_ = s->router_.add_link("board", [self](std::span<const uint8_t> bytes, const auto&) { self->stack_.forward(bytes); });

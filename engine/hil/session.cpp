@@ -23,13 +23,13 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   s.model = std::move(mc.value());
   s.sensors.emplace(vehicle, config.world, config.seed);
   s.rest_altitude_m = s.model->state().p_ENU_m.z();
-  if (!(config.vio_rate_hz > 0)) return Error{"--vio-rate must be > 0"};
-  if (!(config.truth_rate_hz >= 0)) return Error{"--truth-rate must be >= 0 (0: no truth to clients)"};
-  if (!(config.speed >= 0)) return Error{"--speed must be >= 0 (0: as fast as possible)"};
+  if (!(config.vio_rate_hz > 0)) return Error::input("the VIO rate (vio_rate_hz) must be > 0");
+  if (!(config.truth_rate_hz >= 0)) return Error::input("the truth rate (truth_rate_hz) must be >= 0 (0: no truth to clients)");
+  if (!(config.speed >= 0)) return Error::input("the speed (real-time factor) must be >= 0 (0: as fast as possible)");
   if (!std::isfinite(config.actuator_timeout_s) || !(config.actuator_timeout_s > 0))
-    return Error{"--actuator-timeout must be a finite number > 0"};
+    return Error::input("the actuator timeout (actuator_timeout_s) must be a finite number > 0");
   if (!std::isfinite(config.lockstep_timeout_s) || !(config.lockstep_timeout_s > 0))
-    return Error{"--lockstep-timeout must be a finite number > 0"};
+    return Error::input("the lockstep timeout (lockstep_timeout_s) must be a finite number > 0");
   if (auto st = check_step_divides_sensor_periods(config.world.physics.step_s, vehicle); !st) return st.error();
 
   // s.config, not config: the parts keep a reference to it.
@@ -41,8 +41,8 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   s.services = std::move(services.value());
   if (config.trajectory) {
     if (config.link == FlightStackLink::SitlTcp)
-      return Error{"-t: PX4 SITL takes only HIL messages on its simulator link; fly the trajectory with "
-                   "`hitl fly trajectory` against its GCS port instead"};
+      return Error::usage("a trajectory cannot be flown over PX4 SITL's TCP simulator link, which takes only HIL "
+                          "messages; fly it with `hitl fly trajectory` against PX4's GCS port instead");
     vehicle::PilotConfig pc;
     pc.home_alt_msl_m = config.world.home.alt_m;
     pc.mode = config.trajectory_mode;
@@ -107,7 +107,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
     }
     if (auto st = s.step(observer); !st) {
       s.publish();
-      return Error{st.error().message};
+      return st.error();
     }
     if (s.pilot && s.pilot->finished()) {
       reason = s.pilot->state() == vehicle::PilotState::Done ? EndReason::TrajectoryDone : EndReason::TrajectoryFailed;

@@ -22,7 +22,7 @@ Status check_step_divides_sensor_periods(double step_s, const model::VehicleConf
                   "the wrong rate. Use a step that does, e.g. %g, %g or %g",
                   step_s, s.name, period_s, s.rate_hz, 1.0 / vehicle.sensors.imu.rate_hz, 0.5 / vehicle.sensors.imu.rate_hz,
                   0.25 / vehicle.sensors.imu.rate_hz);
-    return Error{text};
+    return Error::input(text);
   }
   return Ok{};
 }

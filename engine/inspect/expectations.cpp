@@ -22,18 +22,18 @@ Expected<std::vector<Expectation>> parse_expectations(std::string_view spec, con
     spec = comma == std::string_view::npos ? std::string_view{} : spec.substr(comma + 1);
     if (item.empty()) continue;
     const auto eq = item.find('=');
-    if (eq == std::string::npos) return Error{"--expect: '" + item + "' is not NAME=HZ"};
+    if (eq == std::string::npos) return Error::input("'" + item + "' is not NAME=HZ");
     const std::string name = trim(std::string_view(item).substr(0, eq));
     const std::string hz = trim(std::string_view(item).substr(eq + 1));
     const auto* desc = messages.lookup(name);
-    if (desc == nullptr) return Error{"--expect: unknown message '" + name + "' (load its dialect with --dialect FILE.xml)"};
+    if (desc == nullptr) return Error::input("unknown message '" + name + "' (load its dialect with --dialect FILE.xml)");
     char* end = nullptr;
     const double rate = std::strtod(hz.c_str(), &end);
     if (hz.empty() || end != hz.c_str() + hz.size() || !std::isfinite(rate) || rate <= 0)
-      return Error{"--expect: rate '" + hz + "' for " + desc->name + " is not a positive number of Hz"};
+      return Error::input("rate '" + hz + "' for " + desc->name + " is not a positive number of Hz");
     out.push_back(Expectation{desc->name, desc->id, rate});
   }
-  if (out.empty()) return Error{"--expect: no NAME=HZ given"};
+  if (out.empty()) return Error::input("no NAME=HZ given");
   return out;
 }
 

@@ -42,7 +42,7 @@ Expected<std::unique_ptr<Inspector>> Inspector::open(const InspectConfig& config
       ec.peer = *peer;
       ec.policy = net::PartnerPolicy::Fixed;
       auto ep = net::UdpEndpoint::open(ec);
-      if (!ep) return Error{ep.error().message + " (is another hitl command talking to the board? run `hitl bridge`)"};
+      if (!ep) return ep.error().suffixed(" (is another hitl command talking to the board? run `hitl bridge`)");
       in->endpoint_.emplace(std::move(ep.value()));
       break;
     }

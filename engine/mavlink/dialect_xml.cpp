@@ -26,7 +26,7 @@ Expected<FieldDesc> parse_field(const pugi::xml_node& node, bool extension, cons
   f.enum_name = node.attribute("enum").as_string();
   f.extension = extension;
   std::string type = node.attribute("type").as_string();
-  if (f.name.empty()) return Error{where + ": a <field> has no name"};
+  if (f.name.empty()) return Error::input(where + ": a <field> has no name");
   if (auto open = type.find('['); open != std::string::npos) {
     const auto close = type.find(']', open);
     int n = 0;
@@ -36,12 +36,12 @@ Expected<FieldDesc> parse_field(const pugi::xml_node& node, bool extension, cons
       n = 0;
     }
     if (close == std::string::npos || n <= 0 || n > 255)
-      return Error{where + ": field '" + f.name + "' has a bad array type '" + type + "'"};
+      return Error::input(where + ": field '" + f.name + "' has a bad array type '" + type + "'");
     f.array_length = static_cast<uint8_t>(n);
     type = type.substr(0, open);
   }
   auto it = type_names().find(type);
-  if (it == type_names().end()) return Error{where + ": field '" + f.name + "' has unknown type '" + type + "'"};
+  if (it == type_names().end()) return Error::input(where + ": field '" + f.name + "' has unknown type '" + type + "'");
   f.type = it->second;
   return f;
 }
@@ -51,16 +51,16 @@ Status load_file(const std::filesystem::path& path, MessageSet& set, DialectInfo
   const auto canonical = std::filesystem::weakly_canonical(path, ec);
   const std::string key = ec ? path.string() : canonical.string();
   if (!seen.insert(key).second) return Ok{};
-  if (!std::filesystem::exists(path)) return Error{"dialect file '" + path.string() + "' does not exist"};
+  if (!std::filesystem::exists(path)) return Error::input("dialect file '" + path.string() + "' does not exist");
   const auto text = read_bounded_file(path.string(), "dialect file", kMaxDialectFileBytes);
   if (!text) return text.error();
   pugi::xml_document doc;
   const auto result = doc.load_buffer(text->data(), text->size());
   if (!result)
-    return Error{"dialect file '" + path.string() + "' is not valid XML (" + result.description() + " at byte " +
-                 std::to_string(result.offset) + ")"};
+    return Error::input("dialect file '" + path.string() + "' is not valid XML (" + result.description() + " at byte " +
+                 std::to_string(result.offset) + ")");
   const auto root = doc.child("mavlink");
-  if (!root) return Error{"dialect file '" + path.string() + "' has no <mavlink> root element"};
+  if (!root) return Error::input("dialect file '" + path.string() + "' has no <mavlink> root element");
   for (const auto& inc : root.children("include")) {
     auto included = path.parent_path() / inc.text().as_string();
     if (auto st = load_file(included, set, info, seen); !st) return st;
@@ -70,7 +70,7 @@ Status load_file(const std::filesystem::path& path, MessageSet& set, DialectInfo
     desc.name = m.attribute("name").as_string();
     const std::string where = path.filename().string() + " message " + (desc.name.empty() ? "?" : desc.name);
     const long long id = m.attribute("id").as_llong(-1);
-    if (desc.name.empty() || id < 0 || id > 0xFFFFFF) return Error{where + ": missing name or id out of range"};
+    if (desc.name.empty() || id < 0 || id > 0xFFFFFF) return Error::input(where + ": missing name or id out of range");
     desc.id = static_cast<uint32_t>(id);
     bool extension = false;
     for (const auto& child : m.children()) {

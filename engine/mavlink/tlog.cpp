@@ -9,7 +9,7 @@ namespace hitl::mavlink {
 
 Expected<TlogWriter> TlogWriter::open(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) return Error{"cannot write tlog '" + path + "': " + std::strerror(errno)};
+  if (f == nullptr) return Error::unavailable("cannot write tlog '" + path + "': " + std::strerror(errno));
   TlogWriter w;
   w.file_.reset(f);
   w.path_ = path;
@@ -45,7 +45,7 @@ std::size_t frame_length_from_header(std::span<const uint8_t> bytes) {
 
 Expected<TlogReader> TlogReader::open(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return Error{"cannot read tlog '" + path + "': " + std::strerror(errno)};
+  if (f == nullptr) return Error::input("cannot read tlog '" + path + "': " + std::strerror(errno));
   TlogReader r;
   r.file_.reset(f);
   return r;

@@ -231,9 +231,9 @@ Expected<Config> parse(std::string_view text, std::string_view source_name, Conf
   try {
     root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
   } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
-    return Error{source + ": not valid JSON: " + e.what()};
+    return Error::input(source + ": not valid JSON: " + e.what());
   }
-  if (!root.is_object()) return Error{source + ": must be a JSON object (got " + std::string(root.type_name()) + ")"};
+  if (!root.is_object()) return Error::input(source + ": must be a JSON object (got " + std::string(root.type_name()) + ")");
   std::vector<std::string> errors;
   Reader reader(root, "", errors);
   fields(reader, config);
@@ -241,7 +241,7 @@ Expected<Config> parse(std::string_view text, std::string_view source_name, Conf
   if (errors.empty()) return config;
   std::string message;
   for (const std::string& e : errors) message += (message.empty() ? "" : "\n") + source + ": " + e;
-  return Error{message};
+  return Error::input(message);
 }
 
 template <class Config, class Fields>

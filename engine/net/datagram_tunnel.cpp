@@ -140,7 +140,7 @@ Expected<std::unique_ptr<DatagramTunnel>> DatagramTunnel::open(const Config& con
     t->local_[adb::index_of(c)].emplace(std::move(ep.value()));
   }
   t->wake_fd_ = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
-  if (t->wake_fd_ < 0) return Error{"adb tunnel: cannot create an eventfd: " + std::string(std::strerror(errno))};
+  if (t->wake_fd_ < 0) return Error::unavailable("adb tunnel: cannot create an eventfd: " + std::string(std::strerror(errno)));
   auto stream = t->connector_();
   if (!stream) return stream.error();
   t->stream_ = std::move(stream.value());

@@ -22,7 +22,7 @@ Expected<SocketAddress> SocketAddress::resolve(const std::string& host, uint16_t
   const std::string service = std::to_string(port);
   const int rc = getaddrinfo(host.c_str(), service.c_str(), &hints, &result);
   if (rc != 0 || result == nullptr)
-    return Error{"cannot resolve host '" + host + "': " + gai_strerror(rc)};
+    return Error::unavailable("cannot resolve host '" + host + "': " + gai_strerror(rc));
   // Prefer IPv4: PX4 and the VOXL2 USB link speak IPv4.
   const addrinfo* pick = result;
   for (const addrinfo* ai = result; ai != nullptr; ai = ai->ai_next)
@@ -39,8 +39,8 @@ Expected<uint16_t> parse_port(std::string_view text, std::string_view what, bool
   unsigned value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size() || value > 65535 || (value == 0 && !allow_zero))
-    return Error{std::string(what) + ": '" + std::string(text) + "' is not a port number (" + (allow_zero ? "0" : "1") +
-                 "..65535)"};
+    return Error::input(std::string(what) + ": '" + std::string(text) + "' is not a port number (" + (allow_zero ? "0" : "1") +
+                 "..65535)");
   return static_cast<uint16_t>(value);
 }
 
@@ -50,20 +50,20 @@ Expected<SocketAddress> SocketAddress::parse(std::string_view host_port, std::st
   if (!host_port.empty() && host_port.front() == '[') {
     const auto close = host_port.find(']');
     if (close == std::string_view::npos || close + 1 >= host_port.size() || host_port[close + 1] != ':')
-      return Error{std::string(what) + ": '" + std::string(host_port) + "' is not [IPv6]:PORT"};
+      return Error::input(std::string(what) + ": '" + std::string(host_port) + "' is not [IPv6]:PORT");
     host = host_port.substr(1, close - 1);
     port = host_port.substr(close + 2);
   } else {
     const auto colon = host_port.rfind(':');
     if (colon == std::string_view::npos || colon == 0)
-      return Error{std::string(what) + ": '" + std::string(host_port) + "' is not HOST:PORT"};
+      return Error::input(std::string(what) + ": '" + std::string(host_port) + "' is not HOST:PORT");
     host = host_port.substr(0, colon);
     port = host_port.substr(colon + 1);
   }
   auto p = parse_port(port, what);
   if (!p) return p.error();
   auto addr = resolve(std::string(host), *p);
-  if (!addr) return Error{std::string(what) + ": " + addr.error().message};
+  if (!addr) return addr.error().prefixed(std::string(what) + ": ");
   return addr;
 }
 

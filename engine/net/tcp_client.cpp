@@ -13,7 +13,7 @@ namespace hitl::net {
 
 Expected<TcpClient> TcpClient::connect(const SocketAddress& to, int timeout_ms, const std::string& name) {
   const int fd = ::socket(to.family(), SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
-  if (fd < 0) return Error{name + ": cannot create a TCP socket: " + std::strerror(errno)};
+  if (fd < 0) return Error::unavailable(name + ": cannot create a TCP socket: " + std::strerror(errno));
   if (::connect(fd, to.get(), to.length()) != 0 && errno != EINPROGRESS) {
     const std::string why = std::strerror(errno);
     ::close(fd);

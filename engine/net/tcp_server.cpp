@@ -12,17 +12,17 @@ namespace hitl::net {
 
 Expected<TcpServer> TcpServer::listen(const std::string& bind_address, uint16_t port, const std::string& name) {
   auto addr = SocketAddress::resolve(bind_address, port);
-  if (!addr) return Error{name + ": bad address '" + bind_address + "': " + addr.error().message};
+  if (!addr) return addr.error().prefixed(name + ": bad address '" + bind_address + "': ");
   const int fd = ::socket(addr->family(), SOCK_STREAM | SOCK_CLOEXEC, 0);
-  if (fd < 0) return Error{name + ": cannot create a TCP socket: " + std::strerror(errno)};
+  if (fd < 0) return Error::unavailable(name + ": cannot create a TCP socket: " + std::strerror(errno));
   const int on = 1;
   ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
   if (::bind(fd, addr->get(), addr->length()) != 0 || ::listen(fd, 1) != 0) {
     const int err = errno;
     ::close(fd);
-    return Error{name + ": cannot listen on TCP " + addr->to_string() + ": " +
+    return Error::unavailable(name + ": cannot listen on TCP " + addr->to_string() + ": " +
                  (err == EADDRINUSE ? std::string("address already in use (another simulator is serving PX4 there)")
-                                    : std::string(std::strerror(err)))};
+                                    : std::string(std::strerror(err))));
   }
   sockaddr_storage local{};
   socklen_t len = sizeof local;

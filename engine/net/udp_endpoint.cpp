@@ -30,9 +30,9 @@ std::string bind_hint(int err, const std::string& where) {
 
 Expected<UdpEndpoint> UdpEndpoint::open(const Config& config) {
   auto bind_addr = SocketAddress::resolve(config.bind_address, config.bind_port);
-  if (!bind_addr) return Error{config.name + ": bad bind address '" + config.bind_address + "': " + bind_addr.error().message};
+  if (!bind_addr) return bind_addr.error().prefixed(config.name + ": bad bind address '" + config.bind_address + "': ");
   const int fd = ::socket(bind_addr->family(), SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (fd < 0) return Error{config.name + ": cannot create a UDP socket: " + std::strerror(errno)};
+  if (fd < 0) return Error::unavailable(config.name + ": cannot create a UDP socket: " + std::strerror(errno));
   const int on = 1;
   ::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
   const int buf_bytes = 1 << 20;
@@ -41,7 +41,7 @@ Expected<UdpEndpoint> UdpEndpoint::open(const Config& config) {
     const int err = errno;
     ::close(fd);
     const std::string where = bind_addr->to_string();
-    return Error{config.name + ": cannot bind UDP " + where + ": " + bind_hint(err, where)};
+    return Error::unavailable(config.name + ": cannot bind UDP " + where + ": " + bind_hint(err, where));
   }
   sockaddr_storage local{};
   socklen_t len = sizeof local;

@@ -40,9 +40,9 @@ Expected<ParamValue> parse_param_value(std::string_view text, ParamType type) {
     if (used != value.size()) throw std::invalid_argument("trailing");
     return out;
   } catch (const std::exception&) {
-    return Error{"value '" + value + "' is not a valid " +
+    return Error::input("value '" + value + "' is not a valid " +
                  (type == ParamType::Int32 ? "INT32 (an integer from -2147483648 to 2147483647)"
-                                           : "REAL32 (a finite number within +-3.4e38)")};
+                                           : "REAL32 (a finite number within +-3.4e38)"));
   }
 }
 
@@ -59,12 +59,12 @@ Expected<std::vector<Param>> parse_params(std::string_view text, std::string_vie
     std::string sys, comp, name, value, type;
     const std::string where = std::string(source) + ":" + std::to_string(line_no) + ": ";
     if (!(fields >> sys >> comp >> name >> value >> type))
-      return Error{where + "expected 'Vehicle-Id Component-Id Name Value Type', got '" + line + "'"};
-    if (name.size() > 16) return Error{where + "parameter name '" + name + "' is longer than 16 characters"};
+      return Error::input(where + "expected 'Vehicle-Id Component-Id Name Value Type', got '" + line + "'");
+    if (name.size() > 16) return Error::input(where + "parameter name '" + name + "' is longer than 16 characters");
     Param p{name, {}};
-    if (type != "6" && type != "9") return Error{where + name + ": type '" + type + "' is not 6 (INT32) or 9 (REAL32)"};
+    if (type != "6" && type != "9") return Error::input(where + name + ": type '" + type + "' is not 6 (INT32) or 9 (REAL32)");
     auto v = parse_param_value(value, type == "6" ? ParamType::Int32 : ParamType::Real32);
-    if (!v) return Error{where + name + ": " + v.error().message};
+    if (!v) return Error::input(where + name + ": " + v.error().message);
     p.value = *v;
     out.push_back(std::move(p));
   }

@@ -38,50 +38,50 @@ Expected<Trajectory> Trajectory::parse(std::string_view text, std::string_view s
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
-    return Error{src + ": not valid JSON (" + e.what() + ")"};
+    return Error::input(src + ": not valid JSON (" + e.what() + ")");
   }
   if (!j.is_object() || !j.contains("waypoints") || !j["waypoints"].is_array())
-    return Error{src + ": expected an object with a \"waypoints\" array"};
+    return Error::input(src + ": expected an object with a \"waypoints\" array");
   const auto& list = j["waypoints"];
-  if (list.empty()) return Error{src + ": \"waypoints\" is empty"};
+  if (list.empty()) return Error::input(src + ": \"waypoints\" is empty");
   Trajectory tr;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string where = src + ": waypoints[" + std::to_string(i) + "]";
     const auto& w = list[i];
-    if (!w.is_object()) return Error{where + ": expected an object {t, x, y, z, yaw}"};
+    if (!w.is_object()) return Error::input(where + ": expected an object {t, x, y, z, yaw}");
     for (const auto& [key, value] : w.items())
       if (key != "t" && key != "x" && key != "y" && key != "z" && key != "yaw")
-        return Error{where + "." + key + ": unknown field (expected t, x, y, z, yaw)"};
+        return Error::input(where + "." + key + ": unknown field (expected t, x, y, z, yaw)");
     Waypoint wp;
     auto number = [&](const char* key, double& out, bool required) -> Status {
       if (!w.contains(key)) {
-        if (required) return Error{where + "." + key + ": missing"};
+        if (required) return Error::input(where + "." + key + ": missing");
         return Ok{};
       }
-      if (!w[key].is_number()) return Error{where + "." + key + ": must be a number"};
+      if (!w[key].is_number()) return Error::input(where + "." + key + ": must be a number");
       out = w[key].get<double>();
-      if (!std::isfinite(out)) return Error{where + "." + key + ": must be finite"};
+      if (!std::isfinite(out)) return Error::input(where + "." + key + ": must be finite");
       return Ok{};
     };
     for (auto st : {number("t", wp.t_s, true), number("x", wp.p_ENU_m[0], true), number("y", wp.p_ENU_m[1], true),
                     number("z", wp.p_ENU_m[2], true), number("yaw", wp.yaw_ENU_rad, false)})
       if (!st) return st.error();
-    if (wp.t_s < 0) return Error{where + ".t: must be >= 0 (got " + std::to_string(wp.t_s) + ")"};
+    if (wp.t_s < 0) return Error::input(where + ".t: must be >= 0 (got " + std::to_string(wp.t_s) + ")");
     // Physical limits: a flight of at most a day within 10 km of home and 1 km up.
     if (wp.t_s > kMaxTime_s)
-      return Error{where + ".t: must be <= " + std::to_string(static_cast<int>(kMaxTime_s)) + " s (got " + compact(wp.t_s) + ")"};
+      return Error::input(where + ".t: must be <= " + std::to_string(static_cast<int>(kMaxTime_s)) + " s (got " + compact(wp.t_s) + ")");
     const std::tuple<const char*, double, double, const char*> limits[] = {{"x", wp.p_ENU_m[0], kMaxHorizontal_m, "m"},
                                                                            {"y", wp.p_ENU_m[1], kMaxHorizontal_m, "m"},
                                                                            {"z", wp.p_ENU_m[2], kMaxHeight_m, "m"},
                                                                            {"yaw", wp.yaw_ENU_rad, kMaxYaw_rad, "rad"}};
     for (const auto& [key, value, limit, unit] : limits)
       if (std::abs(value) > limit)
-        return Error{where + "." + key + ": must be within +-" + std::to_string(static_cast<int>(limit)) + " " + unit +
-                     " (got " + compact(value) + ")"};
+        return Error::input(where + "." + key + ": must be within +-" + std::to_string(static_cast<int>(limit)) + " " + unit +
+                     " (got " + compact(value) + ")");
     if (!tr.waypoints_.empty() && wp.t_s <= tr.waypoints_.back().t_s)
-      return Error{where + ".t: times must increase (" + std::to_string(wp.t_s) + " after " +
-                   std::to_string(tr.waypoints_.back().t_s) + ")"};
-    if (wp.p_ENU_m[2] < 0) return Error{where + ".z: must be >= 0 m above home (got " + std::to_string(wp.p_ENU_m[2]) + ")"};
+      return Error::input(where + ".t: times must increase (" + std::to_string(wp.t_s) + " after " +
+                   std::to_string(tr.waypoints_.back().t_s) + ")");
+    if (wp.p_ENU_m[2] < 0) return Error::input(where + ".z: must be >= 0 m above home (got " + std::to_string(wp.p_ENU_m[2]) + ")");
     tr.waypoints_.push_back(wp);
   }
   return tr;

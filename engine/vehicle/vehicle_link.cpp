@@ -125,12 +125,14 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
       }
     }
     auto board = net::SocketAddress::resolve(options.target_ip, options.gcs_port);
-    if (!board) return Error{"-i: " + board.error().message};
+    if (!board) return board.error().prefixed("the board's address: ");
     auto ep = open_udp("0.0.0.0", options.local_port, *board, net::PartnerPolicy::Fixed, "--local-port");
     if (!ep)
-      return Error{"local port " + std::to_string(options.local_port) +
+      // Failed, not Unavailable: the port is taken by another command talking to the board (the
+      // board is owned, as "no board answered"), and hitl params/arm/... exit 1 for it.
+      return Error::failed("local port " + std::to_string(options.local_port) +
                    " is busy: another hitl command is talking to the board; run `hitl bridge` and let every command "
-                   "go through it (" + ep.error().message + ")"};
+                   "go through it (" + ep.error().message + ")");
     link = make(std::move(ep.value()), "direct to " + board->to_string() + " from port " + std::to_string(options.local_port));
   } else if (spec.rfind("udp:", 0) == 0) {
     auto peer = net::SocketAddress::parse(spec.substr(4), "--connect");
@@ -155,7 +157,7 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
     if (!tcp) return tcp.error();
     link = make(std::move(tcp.value()), "over TCP to " + peer->to_string());
   } else {
-    return Error{"--connect: '" + spec + "' is not auto, udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT"};
+    return Error::input("--connect: '" + spec + "' is not auto, udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT");
   }
   const bool found = link->discover(options.timeout_s);
   if (!found && !link->send_error_.empty()) return Error{"no autopilot " + link->description() + ": " + link->send_error_};
