@@ -44,7 +44,7 @@ Expected<Fault> parse_fault(const std::string& name) {
     if (name == to_string(f)) return f;
   std::string valid;
   for (const auto& n : fault_names()) valid += (valid.empty() ? "" : ", ") + n;
-  return Error{"--fault: '" + name + "' is not a fault this board can inject (" + valid + ")"};
+  return Error::input("'" + name + "' is not a fault this board can inject (" + valid + ")");
 }
 
 void BoardFaults::set(Fault fault) {

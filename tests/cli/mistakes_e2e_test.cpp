@@ -49,6 +49,13 @@ TEST(Mistakes, DidYouMeanForParameterNamesFromTheBoardsList) {
   board.wait(10s);
 }
 
+TEST(Mistakes, AnOptionsValueIsNamedOnce) {
+  const auto r = test::run_hitl({"target", "--fault", "bogus"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("hitl target: --fault: 'bogus' is not a fault this board can inject"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("--fault: --fault"), std::string::npos) << r.err;
+}
+
 TEST(Mistakes, RangesInPlainNumbers) {
   says({"sim", "--speed", "1e400"}, "--speed: 1e400 is not a finite number");
   says({"inspect", "--port", "70000"}, "--port: 70000 is above 65535");
