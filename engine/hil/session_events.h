@@ -2,7 +2,10 @@
 // observer (the CLI prints them, the dashboard logs them). The engine never prints.
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include "engine/faults/fault_schedule.h"
 
 namespace hitl::hil {
 
@@ -11,6 +14,7 @@ enum class Severity { Info, Warning, Error };
 struct SessionEvent {
   Severity severity = Severity::Info;
   std::string text;
+  std::optional<faults::FaultChange> fault;  ///< a fault started or ended (text says it too)
 };
 
 class EventSink {
