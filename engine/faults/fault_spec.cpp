@@ -175,8 +175,11 @@ Expected<FaultSpec> parse_fault(const std::string& text, const Suggest& suggest)
     std::size_t pos = 0;
     for (;;) {
       const auto comma = list.find(',', pos);
-      auto v = parse_number(list.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos),
-                            "'" + text + "': argument " + std::to_string(args.size() + 1));
+      const FaultInfo* f = find_fault(name);
+      const std::string what = f != nullptr && args.size() < f->args.size()
+                                   ? "'" + text + "': fault " + name + ": " + f->args[args.size()].name
+                                   : "'" + text + "': argument " + std::to_string(args.size() + 1);
+      auto v = parse_number(list.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos), what);
       if (!v) return v.error();
       args.push_back(*v);
       if (comma == std::string::npos) break;
