@@ -10,8 +10,10 @@
 #include "cli/adb_options.h"
 #include "cli/commands.h"
 #include "cli/number_check.h"
+#include "cli/parse_errors.h"
 #include "cli/session_dashboard.h"
 #include "cli/sim_output.h"
+#include "engine/faults/scenario.h"
 #include "engine/hil/session.h"
 #include "engine/net/socket_address.h"
 #include "engine/vehicle/trajectory.h"
@@ -36,7 +38,30 @@ struct SimOptions {
   std::string protocol_version = "2.0";
   int sysid = hil::kSimulatorSystemId;
   int compid = hil::kSimulatorComponentId;
+  std::vector<std::string> fault_specs;  ///< --fault NAME[:ARGS][@T[+DUR]], repeatable
+  std::string scenario_file;             ///< --scenario FILE.json
 };
+
+/// --fault and --scenario into the session's faults (docs/faults.md); false after saying what is wrong.
+bool read_faults(const std::string& cmd, const SimOptions& opt, std::vector<faults::FaultSpec>& out) {
+  const faults::Suggest suggest = [](const std::string& name) { return closest(name, faults::fault_names()).value_or(""); };
+  for (const auto& text : opt.fault_specs) {
+    auto spec = faults::parse_fault(text, suggest);
+    if (!spec) {
+      log_error(cmd, "--fault " + spec.error().message);
+      return false;
+    }
+    out.push_back(*spec);
+  }
+  if (opt.scenario_file.empty()) return true;
+  auto scenario = faults::load_scenario(opt.scenario_file, suggest);
+  if (!scenario) {
+    log_error(cmd, "--scenario: " + scenario.error().message);
+    return false;
+  }
+  out.insert(out.end(), scenario->begin(), scenario->end());
+  return true;
+}
 
 int run_sim(const GlobalOptions& global, SimOptions& opt) {
   const std::string cmd = "sim";
@@ -69,6 +94,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     if (opt.tui) for_f_key = std::move(trajectory.value());
     else cfg.trajectory = std::move(trajectory.value());
   }
+  if (!read_faults(cmd, opt, cfg.faults)) return kExitUsage;
   cfg.vehicle = *vehicle;
   cfg.world = *world;
   cfg.sysid = static_cast<uint8_t>(opt.sysid);
@@ -250,6 +276,17 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
                                                                                   {"attitude", vehicle::StickMode::Attitude}}))
       ->default_str("velocity")->group(model);
+
+  const char* faults_group = "Faults (docs/faults.md)";
+  std::string names;
+  for (const auto& f : faults::fault_catalogue()) names += std::string(names.empty() ? "" : ", ") + faults::usage(f);
+  sub->add_option("--fault", opt->fault_specs,
+                  "Inject a fault at simulated time T for DUR seconds (without @T: from the start; without +DUR: to the "
+                  "end), e.g. gps-loss@20+10, motor:2,0.6@15; repeatable. Faults: " + names)
+      ->type_name("NAME[:ARGS][@T[+DUR]]")->group(faults_group);
+  sub->add_option("--scenario", opt->scenario_file,
+                  "Faults from a JSON file: {\"events\": [{\"at_s\": 20, \"fault\": \"gps-loss\", \"duration_s\": 10}, ...]}")
+      ->type_name("FILE.json")->group(faults_group);
 
   sub->add_flag("--tui", opt->tui,
                 "The live dashboard (docs/tui.md): data paths, dsp_hitl, EKF, vehicle, messages, link; keys a arm, d disarm, "

@@ -17,7 +17,27 @@ nlohmann::json streams_json(const std::map<std::string, hil::StreamCount>& strea
   return j;
 }
 
+nlohmann::json fault_records_json(const std::vector<faults::FaultRecord>& records) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& r : records)
+    j.push_back({{"name", r.name},
+                 {"args", r.args},
+                 {"start_s", r.start_s},
+                 {"end_s", r.end_s ? nlohmann::json(*r.end_s) : nlohmann::json(nullptr)}});
+  return j;
+}
+
 }  // namespace
+
+nlohmann::json fault_event_json(const faults::FaultChange& change) {
+  return {{"type", "status"},
+          {"fault",
+           {{"event", change.started ? "started" : "ended"},
+            {"name", change.spec.name()},
+            {"args", change.spec.args},
+            {"sim_time_s", change.t_s},
+            {"duration_s", change.spec.duration_s ? nlohmann::json(*change.spec.duration_s) : nlohmann::json(nullptr)}}}};
+}
 
 nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) {
   nlohmann::json j;
@@ -66,7 +86,10 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
                        {"samples", s.trajectory_samples},
                        {"rms_m", s.trajectory_rms_m},
                        {"max_m", s.trajectory_max_m}};
+  j["active_faults"] = s.active_faults;
+  j["hil_link_faults"] = {{"dropped_datagrams", s.hil_dropped_datagrams}, {"delayed_datagrams", s.hil_delayed_datagrams}};
   if (final_summary) {
+    j["faults"] = fault_records_json(s.faults);
     j["sent"] = streams_json(s.sent, s.wall_time_s);
     j["received"] = streams_json(s.received, s.wall_time_s);
   } else {
@@ -96,6 +119,10 @@ std::string status_line(const hil::SessionSnapshot& s) {
     line += buf;
   }
   if (s.send_errors > 0) line += "  SEND ERRORS " + std::to_string(s.send_errors);
+  if (!s.active_faults.empty()) {
+    line += "  FAULTS";
+    for (const auto& f : s.active_faults) line += " " + f;
+  }
   return line;
 }
 
@@ -127,6 +154,15 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
               static_cast<unsigned long long>(s.touchdowns), s.max_touchdown_speed_m_s, s.peak_touchdown_accel_m_s2 / 9.80665,
               s.max_rebound_m, static_cast<unsigned long long>(s.imu_accel_saturated),
               static_cast<unsigned long long>(s.imu_gyro_saturated), static_cast<unsigned long long>(s.lockstep_late_answers));
+  for (const auto& r : s.faults) {
+    std::string args;
+    for (std::size_t i = 0; i < r.args.size(); ++i) args += (i ? "," : ":") + nlohmann::json(r.args[i]).dump();
+    if (r.end_s) std::printf("fault %s%s: %.3f s to %.3f s\n", r.name.c_str(), args.c_str(), r.start_s, *r.end_s);
+    else std::printf("fault %s%s: from %.3f s to the end\n", r.name.c_str(), args.c_str(), r.start_s);
+  }
+  if (s.hil_dropped_datagrams + s.hil_delayed_datagrams > 0)
+    std::printf("HIL link faults: %llu datagrams dropped, %llu delayed\n", static_cast<unsigned long long>(s.hil_dropped_datagrams),
+                static_cast<unsigned long long>(s.hil_delayed_datagrams));
   if (!s.trajectory_state.empty())
     std::printf("trajectory: %s%s, tracking error against truth RMS %.2f m, max %.2f m (%llu samples)\n",
                 s.trajectory_state.c_str(), s.trajectory_failure.empty() ? "" : (": " + s.trajectory_failure).c_str(),
@@ -139,6 +175,7 @@ void SimPrinter::on_event(const hil::SessionEvent& e) {
   end_line();
   const char* prefix = e.severity == hil::Severity::Warning ? "warning: " : (e.severity == hil::Severity::Error ? "error: " : "");
   if (e.severity != hil::Severity::Info || !global_.quiet) std::cerr << "hitl sim: " << prefix << e.text << '\n';
+  if (e.fault && global_.json) print_json_line(fault_event_json(*e.fault));
 }
 
 void SimPrinter::on_status(const hil::SessionSnapshot& s) {

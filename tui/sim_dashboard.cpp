@@ -121,6 +121,11 @@ DashboardModel SimDashboard::collect() {
   } else {
     m.state = "running";
   }
+  if (!s.active_faults.empty()) {  // injected faults (--fault, --scenario): said on the state line
+    m.state += "; faults:";
+    for (const auto& f : s.active_faults) m.state += " " + f;
+    if (m.state_health == Health::Good) m.state_health = Health::Degraded;
+  }
   m.clock = format("sim %.1f s  rtf %.2f", s.sim_time_s, s.recent_real_time_factor);
   const std::string pace_text = s.speed > 0 ? format("--speed %g", s.speed) : "the measured real-time factor";
   m.paths = paths_from(s.paths, s.paused,

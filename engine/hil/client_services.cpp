@@ -162,10 +162,11 @@ void ClientServices::send_truth_if_due(const sensors::GroundTruth& truth, uint64
   broadcast_own(odometry);
 }
 
-bool ClientServices::send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s) {
+bool ClientServices::send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s, bool lost) {
   if (!vio_ || sim_s + 1e-9 < next_vio_s_) return false;
   ++vio_k_;
   next_vio_s_ = static_cast<double>(vio_k_) / config_.vio_rate_hz;
+  if (lost) return false;
   const auto odometry = make_odometry(truth, time_usec);
   mavlink::FrameBuffer buf;
   const std::size_t n = vio_encoder_.encode(odometry, buf);

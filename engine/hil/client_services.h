@@ -52,7 +52,8 @@ class ClientServices {
   /// Truth to clients when due at `sim_s`.
   void send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s);
   /// ODOMETRY to the VIO server when due at `sim_s`; true when one was sent (or refused).
-  bool send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s);
+  /// `lost` (vio-loss): the schedule moves on but nothing is sent.
+  bool send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s, bool lost = false);
   /// The VIO link's first refused send to each destination, once.
   std::vector<std::string> take_send_errors();
 

@@ -22,6 +22,20 @@ double to_s(const timespec& t) { return static_cast<double>(t.tv_sec) + static_c
 
 }  // namespace
 
+void sleep_until_monotonic_s(double t_s) {
+  timespec due{};
+  due.tv_sec = static_cast<time_t>(t_s);
+  due.tv_nsec = static_cast<long>((t_s - static_cast<double>(due.tv_sec)) * 1e9);
+  if (due.tv_nsec >= 1000000000) due.tv_nsec = 999999999;
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &due, nullptr) == EINTR) {
+  }
+}
+
+double Pacer::next_due_s() const {
+  if (!paced_) return 0.0;
+  return to_s(add_s(anchor_, static_cast<double>(k_ + 1) * wall_period_s_));
+}
+
 Pacer::Pacer(double period_s, double speed) : wall_period_s_(speed > 0 ? period_s / speed : 0.0), paced_(speed > 0) {}
 
 void Pacer::start() {

@@ -18,6 +18,9 @@ struct PacerStats {
   double max_lateness_s = 0;
 };
 
+/// Sleeps until `t_s` on the monotonic clock (base/common/clock.h's monotonic_s), absolute.
+void sleep_until_monotonic_s(double t_s);
+
 class Pacer {
  public:
   static constexpr double kMaxCatchUp_s = 0.1;
@@ -30,6 +33,8 @@ class Pacer {
   /// `stop` is set).
   void wait_next(const std::atomic<bool>* stop = nullptr);
   const PacerStats& stats() const { return stats_; }
+  /// When wait_next() will return, monotonic seconds (0 when not paced: at once).
+  double next_due_s() const;
 
  private:
   double wall_period_s_;

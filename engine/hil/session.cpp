@@ -55,6 +55,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   }
   s.pacer.emplace(config.world.physics.step_s, config.speed);  // one step of simulated time per tick
   s.paths.emplace(config);
+  s.fault_schedule = faults::FaultSchedule(config.faults);
   return std::unique_ptr<Session>(new Session(std::move(impl)));
 }
 
@@ -135,7 +136,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       s.publish();
       observer.on_status(snapshot());
     }
-    s.pacer->wait_next(&stop);
+    s.wait_next_tick(stop);
   }
   s.recording.flush();
   s.say_record_failure(observer);

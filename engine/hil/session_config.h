@@ -6,11 +6,13 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "base/contract/board_ports.h"
 #include "base/contract/data_rates.h"
 #include "base/contract/session_status.h"
 #include "base/mavlink/frame.h"
+#include "engine/faults/fault_spec.h"
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
 #include "engine/vehicle/trajectory.h"
@@ -80,6 +82,8 @@ struct SessionConfig {
   std::string clients_bind = "127.0.0.1";
   std::string gcs;                        ///< --gcs HOST:PORT (empty: none)
   double truth_rate_hz = kTruthToClientsRate_hz;  ///< --truth-rate: truth ODOMETRY to clients (0: none)
+
+  std::vector<faults::FaultSpec> faults;  ///< --fault and --scenario (docs/faults.md)
 };
 
 }  // namespace hitl::hil

@@ -2,9 +2,11 @@
 // observer (the CLI prints them, the dashboard logs them). The engine never prints.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "base/common/severity.h"
+#include "engine/faults/fault_schedule.h"
 
 namespace hitl::hil {
 
@@ -13,6 +15,7 @@ using Severity = ::hitl::Severity;  // base/common/severity.h
 struct SessionEvent {
   Severity severity = Severity::Info;
   std::string text;
+  std::optional<faults::FaultChange> fault;  ///< a fault started or ended (text says it too)
 };
 
 class EventSink {

@@ -18,6 +18,7 @@
 #include "base/mavlink/enums.h"
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/message_set.h"
+#include "engine/faults/fault_schedule.h"
 #include "engine/model/multicopter.h"
 #include "engine/model/touchdown_monitor.h"
 #include "engine/sensors/sensor_suite.h"
@@ -39,6 +40,7 @@ struct Session::Impl {
   std::optional<Pacer> pacer;
   std::optional<DataPaths> paths;
   std::optional<vehicle::TrajectoryFlight> pilot;
+  faults::FaultSchedule fault_schedule;  ///< --fault, --scenario
   mavlink::FrameEncoder pilot_encoder{mavlink::kGcsSystemId, mavlink::kCompIdMissionPlanner};  ///< a GCS's identity
 
   // Operator controls (the dashboard): requests from other threads, taken at the next step.
@@ -68,6 +70,9 @@ struct Session::Impl {
   void drain(double now_s);
   /// HIL_SENSOR and HIL_GPS for what was sampled, the pilot's sticks (-t), HEARTBEAT once a second.
   void send_messages(const sensors::SensorFrame& frame, uint64_t t_us, double sent_s, EventSink& events);
+  /// Starts and ends the faults due at this step's time (said as events) and sets the model's
+  /// motors and the HIL link from what is active; the sensor and VIO faults are read where they act.
+  void apply_faults(EventSink& events);
   /// -t: the trajectory pilot flies on ground truth, as the spec's trajectory_rc plugin does.
   void fly_pilot(const model::VehicleState& state, EventSink& events);
   /// Takes the operator's pause and reset requests; true while paused (the step does nothing).
@@ -81,6 +86,8 @@ struct Session::Impl {
   SessionStatus status(double now_s) const;
   void publish();
   void roll_window();
+  /// The pacer's wait for the next tick, waking for the HIL link's held datagrams as they fall due.
+  void wait_next_tick(const std::atomic<bool>& stop);
 };
 
 }  // namespace hitl::hil

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/faults/fault_schedule.h"
 #include "engine/hil/data_paths.h"
 
 namespace hitl::hil {
@@ -79,6 +80,11 @@ struct SessionSnapshot {
   double speed = 1.0;            ///< --speed (0: as fast as possible)
   bool lockstep = false;
   std::string record_error;      ///< --record failed: the file and why (empty: fine, or not recording)
+  // faults (docs/faults.md)
+  std::vector<std::string> active_faults;  ///< "gps-loss", "motor:2,0.6"
+  std::vector<faults::FaultRecord> faults; ///< every fault that started, with its start and end
+  uint64_t hil_dropped_datagrams = 0;      ///< hil-drop
+  uint64_t hil_delayed_datagrams = 0;      ///< hil-delay
 };
 
 }  // namespace hitl::hil

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "base/common/clock.h"
+#include "engine/faults/sensor_faults.h"
 #include "engine/hil/sensor_messages.h"
 #include "engine/hil/session_impl.h"
 #include "engine/frames/frames.h"
@@ -33,8 +34,10 @@ Status Session::Impl::step(EventSink& events) {
   if (auto st = model->step(); !st) return st;
   const auto& state = model->state();
   touchdowns.observe(state);
-  // Sensors due at this time.
-  const auto frame = sensors->sample_due(state);
+  apply_faults(events);
+  // Sensors due at this time, with the active sensor faults.
+  auto frame = sensors->sample_due(state);
+  faults::apply_sensor_faults(fault_schedule.active(), config.world.atmosphere, frame);
   say_imu_saturated(events);
   // Messages, flushed as one datagram to the flight stack; then VIO and truth.
   const double sent_s = monotonic_s();
@@ -42,11 +45,33 @@ Status Session::Impl::step(EventSink& events) {
   send_messages(frame, t_us, sent_s, events);
   stack->flush();
   stack->actuators().take_new();  // answers counted from here on belong to these sensors
-  if (services->send_vio_if_due(frame.truth, t_us, sim_time_s())) paths->on_odometry(sent_s);
+  if (services->send_vio_if_due(frame.truth, t_us, sim_time_s(), fault_schedule.active().vio_loss)) paths->on_odometry(sent_s);
   services->send_truth_if_due(frame.truth, t_us, sim_time_s());
   say_send_errors(events);
   stack->check_answered(events);
   return Ok{};  // the run loop publishes the snapshot
+}
+
+void Session::Impl::apply_faults(EventSink& events) {
+  if (fault_schedule.empty()) return;
+  for (auto& change : fault_schedule.update(sim_time_s())) {
+    SessionEvent e{Severity::Info, change.text(), std::nullopt};
+    e.fault = std::move(change);
+    events.on_event(e);
+  }
+  const auto& active = fault_schedule.active();
+  for (std::size_t i = 0; i < active.motor_effectiveness.size(); ++i) model->set_motor_effectiveness(i, active.motor_effectiveness[i]);
+  stack->set_link_faults(active.hil_drop_p, active.hil_delay_s);
+}
+
+void Session::Impl::wait_next_tick(const std::atomic<bool>& stop) {
+  // Held datagrams due before the next tick are sent on time, between ticks.
+  while (const auto due_s = stack->next_delayed_s()) {
+    if (stop.load() || *due_s >= pacer->next_due_s()) break;
+    sleep_until_monotonic_s(*due_s);
+    stack->release_delayed(monotonic_s());
+  }
+  pacer->wait_next(&stop);
 }
 
 void Session::Impl::drain(double now_s) {
@@ -154,6 +179,10 @@ void Session::Impl::publish() {
   auto s = make_snapshot({config, messages, model->state(), rest_altitude_m, sim_time_s(), now_s - start_wall_s,
                           recent_rtf, traffic, *stack, *services, pacer->stats(), *sensors, touchdowns,
                           pilot ? &*pilot : nullptr, paths->stats(now_s), clock.paused(), resets, recording.error()});
+  s.active_faults = fault_schedule.active_texts();
+  s.faults = fault_schedule.records();
+  s.hil_dropped_datagrams = stack->link_faults().dropped_datagrams();
+  s.hil_delayed_datagrams = stack->link_faults().delayed_datagrams();
   std::lock_guard<std::mutex> lock(snapshot_mutex);
   published = std::move(s);
 }

@@ -1,7 +1,9 @@
 #include "engine/hil/stack_link.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "base/common/clock.h"
 #include "base/mavlink/messages.h"
@@ -49,7 +51,8 @@ StackLink::StackLink(const SessionConfig& config, std::unique_ptr<net::Link> lin
       traffic_(traffic),
       recording_(recording),
       clock_(clock),
-      actuators_(config.actuator_timeout_s) {}
+      actuators_(config.actuator_timeout_s),
+      link_faults_(config.seed) {}
 
 bool StackLink::wait_for_sitl(const std::atomic<bool>& stop, EventSink& events) {
   const std::string local = link_->local_address() ? link_->local_address()->to_string() : "?";
@@ -73,6 +76,10 @@ bool StackLink::wait_for_sitl(const std::atomic<bool>& stop, EventSink& events) 
 
 void StackLink::queue(std::span<const uint8_t> bytes, std::optional<uint32_t> counted_id) {
   recording_.record(bytes);
+  if (link_faults_.holding()) {  // hil-drop / hil-delay: the step's frames go out (or not) as one datagram later
+    link_faults_.hold(bytes, counted_id);
+    return;
+  }
   if (!link_->has_room_for(bytes.size())) flush();  // a full datagram is sent first (and its messages counted)
   link_->queue(bytes);
   if (counted_id) ++batch_[*counted_id];  // counted as sent when its datagram is
@@ -84,6 +91,27 @@ void StackLink::forward(std::span<const uint8_t> bytes) {
 }
 
 void StackLink::flush() {
+  if (link_faults_.holding()) {
+    link_faults_.close_datagram(monotonic_s());
+    release_delayed(monotonic_s());
+    return;
+  }
+  send_batch();
+}
+
+void StackLink::release_delayed(double now_s) {
+  link_faults_.release_due(now_s, [&](LinkFaults::Datagram& d) {
+    auto held = std::exchange(batch_, std::move(d.counts));  // frames queued since (a client's) wait for their own flush
+    for (const auto& f : d.frames) {
+      if (!link_->has_room_for(f.size())) send_batch();
+      link_->queue(f);
+    }
+    send_batch();
+    batch_ = std::move(held);
+  });
+}
+
+void StackLink::send_batch() {
   if (!link_->connected()) {  // PX4 SITL not (or no longer) connected: nothing leaves, nothing is counted
     (void)link_->flush();
     batch_.clear();
@@ -137,8 +165,11 @@ void StackLink::lockstep_wait(EventSink& events, const std::function<void()>& dr
   ++lockstep_counters_.waits;
   const double deadline = monotonic_s() + config_.lockstep_timeout_s;
   while (actuators_.take_new() == 0 && !gone()) {
+    release_delayed(monotonic_s());  // hil-delay: the HIL_SENSOR awaited may still be held
     const double left_s = deadline - monotonic_s();
-    if (left_s <= 0 || !link_->wait_readable(static_cast<int>(std::ceil(left_s * 1000)))) {
+    double wait_s = left_s;
+    if (const auto due_s = next_delayed_s()) wait_s = std::min(wait_s, std::max(0.0, *due_s - monotonic_s()));
+    if (left_s <= 0 || !link_->wait_readable(static_cast<int>(std::ceil(wait_s * 1000)))) {
       if (monotonic_s() < deadline) continue;
       ++lockstep_counters_.fallbacks;
       stalled_ = true;

@@ -14,6 +14,7 @@
 
 #include "base/common/expected.h"
 #include "engine/hil/actuator_input.h"
+#include "engine/hil/link_faults.h"
 #include "engine/hil/pause_clock.h"
 #include "engine/hil/recording.h"
 #include "engine/hil/session_config.h"
@@ -54,6 +55,12 @@ class StackLink {
   /// A frame from elsewhere (a client, the trajectory pilot) to the flight stack.
   void forward(std::span<const uint8_t> bytes);
   void flush();
+  // --- the HIL link's faults (link_faults.h) ---------------------------------------------------
+  void set_link_faults(double drop_p, double delay_s) { link_faults_.set(drop_p, delay_s); }
+  /// Sends the held datagrams due by `now_s` (the run loop calls it between ticks).
+  void release_delayed(double now_s);
+  std::optional<double> next_delayed_s() const { return link_faults_.next_due_s(); }
+  const LinkFaults& link_faults() const { return link_faults_; }
   /// Each destination's first refused send, in words, once.
   std::vector<std::string> take_send_errors() { return link_->take_send_errors(); }
 
@@ -92,6 +99,8 @@ class StackLink {
   StackLink(const SessionConfig& config, std::unique_ptr<net::Link> link, const mavlink::MessageSet& messages,
                   Traffic& traffic, Recording& recording, const PauseClock& clock);
   void queue(std::span<const uint8_t> bytes, std::optional<uint32_t> counted_id);
+  /// Sends what the link holds as one datagram and counts its messages (batch_).
+  void send_batch();
   std::string no_answer_text() const;
   std::string no_answer_cause() const;
   std::string peer_text() const;
@@ -104,6 +113,7 @@ class StackLink {
   Recording& recording_;
   const PauseClock& clock_;
   ActuatorInput actuators_;
+  LinkFaults link_faults_;
   std::map<uint32_t, uint64_t> batch_;  ///< messages in what flush() sends: counted as sent once it is
   LockstepCounters lockstep_counters_;
   uint64_t routed_to_board_ = 0;

@@ -32,4 +32,8 @@ RotorLoads rotor_loads(const RotorConfig& rotor, double omega_rad_s, const Eigen
   return loads;
 }
 
+RotorLoads scaled_rotor_loads(const RotorLoads& loads, double k) {
+  return {loads.force_at_hub_ENU_N * k, loads.torque_on_frame_ENU_Nm * k};
+}
+
 }  // namespace hitl::model

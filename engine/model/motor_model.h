@@ -36,4 +36,8 @@ struct RotorLoads {
 RotorLoads rotor_loads(const RotorConfig& rotor, double omega_rad_s, const Eigen::Vector3d& axis_ENU,
                        const Eigen::Vector3d& v_air_ENU_m_s);
 
+/// A degraded or failed motor (a fault, engine/faults): its thrust, drag and torques on the frame
+/// x k (k = 0: out; the rotor still spins at the commanded speed but moves no air).
+RotorLoads scaled_rotor_loads(const RotorLoads& loads, double k);
+
 }  // namespace hitl::model

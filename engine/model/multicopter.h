@@ -64,6 +64,9 @@ class Multicopter {
   /// Commands for the following step() calls. Non-finite values count and become 0; values outside
   /// 0..1 count and are clamped.
   void set_motor_commands(const MotorCommands& commands);
+  /// Motor i's effectiveness: its rotor's thrust, drag and torques on the frame x k from the next
+  /// step (a motor fault; 1 = healthy, 0 = out). Kept across reset(); a non-finite or negative k is 0.
+  void set_motor_effectiveness(std::size_t i, double k);
   /// An extra force on the base origin (tests: side load; a UI "push"), world ENU, until changed.
   void set_external_force_ENU_N(const Eigen::Vector3d& f_ENU_N);
 

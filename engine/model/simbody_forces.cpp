@@ -36,7 +36,8 @@ void MulticopterForces::calcForce(const SimTK::State& state, SimTK::Vector_<SimT
     const SimTK::Transform& X_ENU_R = rotor.getBodyTransform(state);
     const Eigen::Vector3d axis_ENU = to_eigen(X_ENU_R.z());
     const Eigen::Vector3d v_hub_ENU_m_s = to_eigen(rotor.getBodyOriginVelocity(state));
-    const RotorLoads loads = rotor_loads(rc, omega_pin_rad_s, axis_ENU, v_hub_ENU_m_s - wind_ENU_m_s);
+    const RotorLoads loads = scaled_rotor_loads(rotor_loads(rc, omega_pin_rad_s, axis_ENU, v_hub_ENU_m_s - wind_ENU_m_s),
+                                                inputs_.effectiveness[i]);
     rotor.applyForceToBodyPoint(state, SimTK::Vec3(0), to_simtk(loads.force_at_hub_ENU_N), body_forces);
     base.applyBodyTorque(state, to_simtk(loads.torque_on_frame_ENU_Nm), body_forces);
   }

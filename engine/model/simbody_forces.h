@@ -22,6 +22,7 @@ struct ForceInputs {
   Eigen::Vector3d external_force_ENU_N = Eigen::Vector3d::Zero();
   std::array<ContactAnchor, kContactPoints> anchors{};  ///< per contact_points() entry
   double substep_s = 0.004;  ///< the integrator's fixed step (the motor torque aims to land on the lag curve)
+  std::array<double, 4> effectiveness{1.0, 1.0, 1.0, 1.0};  ///< per rotor, thrust and torque x k (a motor fault)
 };
 
 inline SimTK::Vec3 to_simtk(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }

@@ -1,0 +1,91 @@
+#include "engine/faults/fault_schedule.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace hitl::faults {
+namespace {
+
+constexpr double kTimeEpsilon_s = 1e-9;
+
+std::string compact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string label(const FaultSpec& spec) { return spec.args.empty() ? spec.name() : spec.name() + ":" + spec.args_text(); }
+
+}  // namespace
+
+std::string FaultChange::text() const {
+  char t[48];
+  std::snprintf(t, sizeof t, "t=%.3f s fault ", t_s);
+  std::string out = t + label(spec) + (started ? " started" : " ended");
+  if (started && spec.duration_s) out += " (" + compact(*spec.duration_s) + " s)";
+  return out;
+}
+
+FaultSchedule::FaultSchedule(std::vector<FaultSpec> specs) {
+  // In start order (stable: equal times keep the order they were given in).
+  std::stable_sort(specs.begin(), specs.end(), [](const FaultSpec& a, const FaultSpec& b) { return a.start_s < b.start_s; });
+  for (auto& s : specs) entries_.push_back({std::move(s)});
+}
+
+std::vector<FaultChange> FaultSchedule::update(double t_s) {
+  std::vector<FaultChange> changes;
+  for (auto& e : entries_) {
+    if (e.state == State::Pending && t_s + kTimeEpsilon_s >= e.spec.start_s) {
+      e.state = State::Active;
+      e.started_s = t_s;
+      e.record = records_.size();
+      records_.push_back({e.spec.name(), e.spec.args, t_s, std::nullopt});
+      changes.push_back({true, e.spec, t_s});
+    }
+    if (e.state == State::Active && e.spec.duration_s && t_s + kTimeEpsilon_s >= e.spec.start_s + *e.spec.duration_s) {
+      e.state = State::Done;
+      records_[e.record].end_s = t_s;
+      changes.push_back({false, e.spec, t_s});
+    }
+  }
+  fold(t_s);
+  return changes;
+}
+
+void FaultSchedule::fold(double t_s) {
+  ActiveFaults a;
+  double pass = 1.0;  // the chance a datagram gets through every hil-drop
+  for (const auto& e : entries_) {
+    if (e.state != State::Active) continue;
+    const auto& v = e.spec.args;
+    switch (e.spec.kind) {
+      case FaultKind::GpsLoss: a.gps_loss = true; break;
+      case FaultKind::GpsJump:
+        a.gps_north_m += v[0];
+        a.gps_east_m += v[1];
+        break;
+      case FaultKind::GpsDegrade:
+        a.gps_report = GpsReport{static_cast<std::uint8_t>(v[0]), static_cast<std::uint8_t>(v[1]), v[2], v.size() > 3 ? v[3] : v[2]};
+        break;
+      case FaultKind::ImuBias: a.accel_bias_FRD_m_s2 += Eigen::Vector3d(v[0], v[1], v[2]); break;
+      case FaultKind::GyroBias: a.gyro_bias_FRD_rad_s += Eigen::Vector3d(v[0], v[1], v[2]); break;
+      case FaultKind::MagOffset: a.mag_offset_FRD_gauss += Eigen::Vector3d(v[0], v[1], v[2]); break;
+      case FaultKind::BaroDrift: a.baro_offset_Pa += v[0] * (t_s - e.started_s); break;
+      case FaultKind::Motor: a.motor_effectiveness[static_cast<std::size_t>(v[0])] *= v[1]; break;
+      case FaultKind::VioLoss: a.vio_loss = true; break;
+      case FaultKind::HilDrop: pass *= 1.0 - v[0]; break;
+      case FaultKind::HilDelay: a.hil_delay_s += v[0] * 1e-3; break;
+    }
+  }
+  a.hil_drop_p = 1.0 - pass;
+  active_ = a;
+}
+
+std::vector<std::string> FaultSchedule::active_texts() const {
+  std::vector<std::string> out;
+  for (const auto& e : entries_)
+    if (e.state == State::Active) out.push_back(label(e.spec));
+  return out;
+}
+
+}  // namespace hitl::faults

@@ -1,0 +1,86 @@
+// The session's faults over time: which have started and ended at a simulated time, what is active
+// now folded into one ActiveFaults the hooks read (sensors, the model, the HIL link, VIO), and the
+// record of every start and end for the summary. Pure: no I/O, no clock but the time it is given.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "engine/faults/fault_spec.h"
+
+namespace hitl::faults {
+
+/// What the GPS receiver reports under gps-degrade.
+struct GpsReport {
+  std::uint8_t fix_type = 3;
+  std::uint8_t satellites = 10;
+  double eph_m = 0;
+  double epv_m = 0;
+};
+
+/// Everything active at one time, folded: biases and offsets add, motor scales and the chances of a
+/// datagram getting through multiply, delays add, the latest gps-degrade wins.
+struct ActiveFaults {
+  bool gps_loss = false;
+  double gps_north_m = 0;
+  double gps_east_m = 0;
+  std::optional<GpsReport> gps_report;
+  Eigen::Vector3d accel_bias_FRD_m_s2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_bias_FRD_rad_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d mag_offset_FRD_gauss = Eigen::Vector3d::Zero();
+  double baro_offset_Pa = 0;  ///< baro-drift: rate x time since its start
+  std::array<double, 4> motor_effectiveness{1.0, 1.0, 1.0, 1.0};
+  bool vio_loss = false;
+  double hil_drop_p = 0;
+  double hil_delay_s = 0;
+};
+
+/// One fault's start and end as it happened (the summary's `faults`).
+struct FaultRecord {
+  std::string name;
+  std::vector<double> args;
+  double start_s = 0;
+  std::optional<double> end_s;  ///< none: still active when the session ended
+};
+
+struct FaultChange {
+  bool started = true;  ///< false: ended
+  FaultSpec spec;
+  double t_s = 0;  ///< simulated time of the step it took effect in
+  /// "t=20.000 s fault gps-loss started (10 s)", "t=30.000 s fault gps-loss ended"
+  std::string text() const;
+};
+
+class FaultSchedule {
+ public:
+  explicit FaultSchedule(std::vector<FaultSpec> specs = {});
+  /// Starts and ends what is due at simulated time `t_s` (called every step, t increasing) and
+  /// refolds active(); the changes in the order they happened.
+  std::vector<FaultChange> update(double t_s);
+  const ActiveFaults& active() const { return active_; }
+  const std::vector<FaultRecord>& records() const { return records_; }
+  /// "gps-loss", "motor:2,0.6" for each active fault.
+  std::vector<std::string> active_texts() const;
+  bool empty() const { return entries_.empty(); }
+
+ private:
+  enum class State { Pending, Active, Done };
+  struct Entry {
+    FaultSpec spec;
+    State state = State::Pending;
+    double started_s = 0;
+    std::size_t record = 0;
+  };
+  void fold(double t_s);
+
+  std::vector<Entry> entries_;
+  std::vector<FaultRecord> records_;
+  ActiveFaults active_;
+};
+
+}  // namespace hitl::faults

@@ -1,0 +1,194 @@
+#include "engine/faults/fault_spec.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace hitl::faults {
+namespace {
+
+// Ranges: far beyond any real fault, near enough to catch a slipped unit (mm for m, deg for rad).
+constexpr double kMaxGpsJump_m = 100000;
+constexpr double kMaxAccuracy_m = 655;       ///< HIL_GPS carries eph/epv in cm in a uint16
+constexpr double kMaxAccelBias_m_s2 = 100;
+constexpr double kMaxGyroBias_rad_s = 35;
+constexpr double kMaxMagOffset_gauss = 10;
+constexpr double kMaxBaroDrift_Pa_per_s = 10000;
+constexpr double kMaxMotorScale = 2;
+constexpr double kMaxHilDelay_ms = 5000;
+constexpr double kMaxTime_s = 86400;         ///< a day of simulated time
+
+std::string compact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+}  // namespace
+
+const std::vector<FaultInfo>& fault_catalogue() {
+  static const std::vector<FaultInfo> catalogue = {
+      {FaultKind::GpsLoss, "gps-loss", {}, 0, "no HIL_GPS is sent (the receiver lost every satellite)"},
+      {FaultKind::GpsJump, "gps-jump", {{"north_m", -kMaxGpsJump_m, kMaxGpsJump_m}, {"east_m", -kMaxGpsJump_m, kMaxGpsJump_m}}, 2,
+       "the reported position is offset north and east (spoofing, a multipath jump); velocity unchanged"},
+      {FaultKind::GpsDegrade, "gps-degrade",
+       {{"fix", 0, 6, true}, {"sats", 0, 255, true}, {"eph_m", 0, kMaxAccuracy_m}, {"epv_m", 0, kMaxAccuracy_m}}, 3,
+       "HIL_GPS reports this fix_type, satellites and eph (epv: the 4th argument, else eph); the position noise is unchanged"},
+      {FaultKind::ImuBias, "imu-bias",
+       {{"ax_m_s2", -kMaxAccelBias_m_s2, kMaxAccelBias_m_s2}, {"ay_m_s2", -kMaxAccelBias_m_s2, kMaxAccelBias_m_s2},
+        {"az_m_s2", -kMaxAccelBias_m_s2, kMaxAccelBias_m_s2}}, 3,
+       "the accelerometer's bias steps by (ax, ay, az), body FRD, m/s^2"},
+      {FaultKind::GyroBias, "gyro-bias",
+       {{"gx_rad_s", -kMaxGyroBias_rad_s, kMaxGyroBias_rad_s}, {"gy_rad_s", -kMaxGyroBias_rad_s, kMaxGyroBias_rad_s},
+        {"gz_rad_s", -kMaxGyroBias_rad_s, kMaxGyroBias_rad_s}}, 3,
+       "the gyro's bias steps by (gx, gy, gz), body FRD, rad/s"},
+      {FaultKind::MagOffset, "mag-offset",
+       {{"x_gauss", -kMaxMagOffset_gauss, kMaxMagOffset_gauss}, {"y_gauss", -kMaxMagOffset_gauss, kMaxMagOffset_gauss},
+        {"z_gauss", -kMaxMagOffset_gauss, kMaxMagOffset_gauss}}, 3,
+       "the magnetometer reads an extra field (x, y, z), body FRD, gauss (a current-carrying cable nearby)"},
+      {FaultKind::BaroDrift, "baro-drift", {{"pa_per_s", -kMaxBaroDrift_Pa_per_s, kMaxBaroDrift_Pa_per_s}}, 1,
+       "the static pressure drifts at this rate from the fault's start (pressure_alt follows)"},
+      {FaultKind::Motor, "motor", {{"i", 0, 3, true}, {"k", 0, kMaxMotorScale}}, 2,
+       "motor i's (PX4 order) thrust and torques x k in the model; 0: out (the rotor spins but moves no air)"},
+      {FaultKind::VioLoss, "vio-loss", {}, 0, "no ODOMETRY is sent to the VIO server (tracking lost)"},
+      {FaultKind::HilDrop, "hil-drop", {{"p", 0, 1}}, 1,
+       "each datagram to the flight stack (a step's HIL_SENSOR, HIL_GPS, ...) is dropped with probability p (--seed)"},
+      {FaultKind::HilDelay, "hil-delay", {{"ms", 0, kMaxHilDelay_ms}}, 1,
+       "each datagram to the flight stack leaves this much later (queued; the 250 Hz loop does not wait)"},
+  };
+  return catalogue;
+}
+
+const FaultInfo& info(FaultKind kind) {
+  for (const auto& f : fault_catalogue())
+    if (f.kind == kind) return f;
+  return fault_catalogue().front();  // unreachable: every kind is in the catalogue
+}
+
+const FaultInfo* find_fault(std::string_view name) {
+  for (const auto& f : fault_catalogue())
+    if (name == f.name) return &f;
+  return nullptr;
+}
+
+std::vector<std::string> fault_names() {
+  std::vector<std::string> names;
+  for (const auto& f : fault_catalogue()) names.emplace_back(f.name);
+  return names;
+}
+
+std::string usage(const FaultInfo& f) {
+  std::string out = f.name;
+  for (std::size_t i = 0; i < f.args.size(); ++i) {
+    out += i == 0 ? ":" : ",";
+    if (i >= f.required_args) out += "[";
+    out += f.args[i].name;
+    if (i >= f.required_args) out += "]";
+  }
+  return out;
+}
+
+std::string FaultSpec::args_text() const {
+  std::string out;
+  for (std::size_t i = 0; i < args.size(); ++i) out += (i ? "," : "") + compact(args[i]);
+  return out;
+}
+
+std::string FaultSpec::text() const {
+  std::string out = name();
+  if (!args.empty()) out += ":" + args_text();
+  out += "@" + compact(start_s);
+  if (duration_s) out += "+" + compact(*duration_s);
+  return out;
+}
+
+Expected<double> parse_number(const std::string& text, const std::string& what) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  if (text.empty() || end != begin + text.size()) return Error{what + ": '" + text + "' is not a number"};
+  if (!std::isfinite(v)) return Error{what + ": '" + text + "' is not a finite number"};
+  return v;
+}
+
+Expected<FaultSpec> make_fault(const std::string& name, const std::vector<double>& args, double start_s,
+                               std::optional<double> duration_s, const Suggest& suggest) {
+  const FaultInfo* f = find_fault(name);
+  if (f == nullptr) {
+    const std::string hint = suggest ? suggest(name) : std::string();
+    return Error{"unknown fault '" + name + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?") +
+                 " (faults: docs/faults.md)"};
+  }
+  const std::string where = "fault " + std::string(f->name);
+  if (args.size() < f->required_args || args.size() > f->args.size()) {
+    const std::string wanted = f->required_args == f->args.size()
+                                   ? std::to_string(f->args.size())
+                                   : std::to_string(f->required_args) + " to " + std::to_string(f->args.size());
+    return Error{where + ": takes " + wanted + " argument" + (f->args.size() == 1 ? "" : "s") + " (" + usage(*f) +
+                 "), got " + std::to_string(args.size())};
+  }
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const FaultArg& a = f->args[i];
+    const double v = args[i];
+    if (!std::isfinite(v)) return Error{where + ": " + a.name + " must be a finite number"};
+    if (v < a.min || v > a.max)
+      return Error{where + ": " + a.name + " must be within " + compact(a.min) + ".." + compact(a.max) + " (got " + compact(v) + ")"};
+    if (a.integer && v != std::floor(v)) return Error{where + ": " + a.name + " must be a whole number (got " + compact(v) + ")"};
+  }
+  if (!std::isfinite(start_s) || start_s < 0 || start_s > kMaxTime_s)
+    return Error{where + ": the start time must be 0.." + compact(kMaxTime_s) + " s of simulated time (got " + compact(start_s) + ")"};
+  if (duration_s && (!std::isfinite(*duration_s) || !(*duration_s > 0) || *duration_s > kMaxTime_s))
+    return Error{where + ": the duration must be more than 0 and at most " + compact(kMaxTime_s) + " s (got " +
+                 compact(*duration_s) + ")"};
+  FaultSpec spec;
+  spec.kind = f->kind;
+  spec.args = args;
+  spec.start_s = start_s;
+  spec.duration_s = duration_s;
+  return spec;
+}
+
+Expected<FaultSpec> parse_fault(const std::string& text, const Suggest& suggest) {
+  std::string head = text;
+  double start_s = 0;
+  std::optional<double> duration_s;
+  if (const auto at = text.find('@'); at != std::string::npos) {
+    head = text.substr(0, at);
+    std::string when = text.substr(at + 1);
+    auto plus = when.find('+', 1);
+    while (plus != std::string::npos && (when[plus - 1] == 'e' || when[plus - 1] == 'E')) plus = when.find('+', plus + 1);
+    if (plus != std::string::npos) {
+      auto d = parse_number(when.substr(plus + 1), "'" + text + "': the duration after '+'");
+      if (!d) return d.error();
+      duration_s = *d;
+      when = when.substr(0, plus);
+    }
+    auto t = parse_number(when, "'" + text + "': the start time after '@'");
+    if (!t) return t.error();
+    start_s = *t;
+  }
+  std::string name = head;
+  std::vector<double> args;
+  if (const auto colon = head.find(':'); colon != std::string::npos) {
+    name = head.substr(0, colon);
+    const std::string list = head.substr(colon + 1);
+    std::size_t pos = 0;
+    for (;;) {
+      const auto comma = list.find(',', pos);
+      const FaultInfo* f = find_fault(name);
+      const std::string what = f != nullptr && args.size() < f->args.size()
+                                   ? "'" + text + "': fault " + name + ": " + f->args[args.size()].name
+                                   : "'" + text + "': argument " + std::to_string(args.size() + 1);
+      auto v = parse_number(list.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos), what);
+      if (!v) return v.error();
+      args.push_back(*v);
+      if (comma == std::string::npos) break;
+      pos = comma + 1;
+    }
+  }
+  auto spec = make_fault(name, args, start_s, duration_s, suggest);
+  if (!spec) return Error{"'" + text + "': " + spec.error().message};
+  return spec;
+}
+
+}  // namespace hitl::faults

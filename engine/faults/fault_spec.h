@@ -1,0 +1,81 @@
+// A fault: what goes wrong, with its parameters in units, when (simulated seconds) and for how
+// long. The catalogue names each kind, its arguments with their units and ranges, and what it means
+// physically (docs/faults.md is its reference). Specs come from `--fault NAME[:ARGS][@T[+DUR]]` and
+// from scenario files (scenario.h); the session's FaultSchedule (fault_schedule.h) starts and ends them.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "base/common/expected.h"
+
+namespace hitl::faults {
+
+enum class FaultKind {
+  GpsLoss,     ///< no HIL_GPS sent
+  GpsJump,     ///< the GPS position offset north/east (spoofing, a multipath jump)
+  GpsDegrade,  ///< fix_type, satellites and eph/epv reported as given
+  ImuBias,     ///< accelerometer bias step, body FRD, m/s^2
+  GyroBias,    ///< gyro bias step, body FRD, rad/s
+  MagOffset,   ///< magnetometer offset (a current near the sensor), body FRD, gauss
+  BaroDrift,   ///< barometer pressure drifting at a rate, Pa/s
+  Motor,       ///< motor i's thrust and torques x k (the model: engine/model)
+  VioLoss,     ///< no ODOMETRY to the VIO server
+  HilDrop,     ///< each outgoing HIL datagram dropped with probability p (seeded)
+  HilDelay,    ///< each outgoing HIL datagram held back this long
+};
+
+struct FaultArg {
+  const char* name;  ///< with its unit: "north_m", "pa_per_s"
+  double min;
+  double max;
+  bool integer = false;
+};
+
+struct FaultInfo {
+  FaultKind kind;
+  const char* name;  ///< "gps-loss"
+  std::vector<FaultArg> args;
+  std::size_t required_args;  ///< the rest are optional
+  const char* meaning;        ///< one line: what it does where
+};
+
+/// Every fault the simulator knows, in the order docs/faults.md lists them.
+const std::vector<FaultInfo>& fault_catalogue();
+const FaultInfo& info(FaultKind kind);
+/// nullptr when `name` is no fault.
+const FaultInfo* find_fault(std::string_view name);
+std::vector<std::string> fault_names();
+/// "motor:I,K" (what --help and errors show).
+std::string usage(const FaultInfo& info);
+
+struct FaultSpec {
+  FaultKind kind = FaultKind::GpsLoss;
+  std::vector<double> args;  ///< in the catalogue's order and units
+  double start_s = 0;        ///< simulated time
+  std::optional<double> duration_s;  ///< none: until the session ends
+
+  std::string name() const { return info(kind).name; }
+  /// "2,0.6" ("" without arguments).
+  std::string args_text() const;
+  /// "motor:2,0.6@15+5"
+  std::string text() const;
+};
+
+/// A suggestion for an unknown fault name ("" for none); the CLI passes its did-you-mean.
+using Suggest = std::function<std::string(const std::string& unknown_name)>;
+
+/// A fault and its arguments checked against the catalogue: the count, numbers (NaN and inf are
+/// refused), ranges and integers; errors name the fault and the argument.
+Expected<FaultSpec> make_fault(const std::string& name, const std::vector<double>& args, double start_s,
+                               std::optional<double> duration_s, const Suggest& suggest = {});
+/// Parses "NAME[:ARGS][@T[+DUR]]": `gps-loss@20+10`, `motor:2,0.6@15`, `hil-delay:20`.
+Expected<FaultSpec> parse_fault(const std::string& text, const Suggest& suggest = {});
+/// A number as a fault argument or time: finite, the whole text.
+Expected<double> parse_number(const std::string& text, const std::string& what);
+
+}  // namespace hitl::faults

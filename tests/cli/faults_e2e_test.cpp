@@ -1,0 +1,81 @@
+// hitl sim --scenario against hitl target (docs/faults.md): a GPS loss and a weak motor in a flown
+// square, the summary's faults, and what the emulated board reported; bad --fault input, exit 2.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+
+#include "tests/support/process.h"
+
+namespace hitl {
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST(FaultsE2E, ScenarioWithGpsLossAndWeakMotorFliesTheSquareAndIsReported) {
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "--json", "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "--json", "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil),
+                     "--local-port", std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "5",
+                     "-t", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--scenario",
+                     std::string(HITL_SOURCE_DIR) + "/docs/examples/faults-gps-motor.json"});
+  EXPECT_EQ(sim.wait(150s), 0) << sim.err();
+  board.signal(SIGINT);
+  EXPECT_EQ(board.wait(20s), 0) << board.err();
+  const auto lines = sim.out_lines();
+  ASSERT_FALSE(lines.empty()) << sim.err();
+  const auto j = nlohmann::json::parse(lines.back());
+  EXPECT_EQ(j["end"], "trajectory_done") << sim.err();
+  ASSERT_EQ(j["faults"].size(), 2u) << j["faults"].dump();
+  EXPECT_EQ(j["faults"][0]["name"], "gps-loss");
+  EXPECT_NEAR(j["faults"][0]["start_s"].get<double>(), 15.0, 1e-6);
+  EXPECT_NEAR(j["faults"][0]["end_s"].get<double>(), 23.0, 1e-6);
+  EXPECT_EQ(j["faults"][1]["name"], "motor");
+  EXPECT_EQ(j["faults"][1]["args"], nlohmann::json::array({2, 0.8}));
+  EXPECT_NEAR(j["faults"][1]["end_s"].get<double>(), 33.0, 1e-6);
+  for (const char* said : {"t=15.000 s fault gps-loss started (8 s)", "t=23.000 s fault gps-loss ended",
+                           "t=25.000 s fault motor:2,0.8 started (8 s)", "t=33.000 s fault motor:2,0.8 ended"})
+    EXPECT_NE(sim.err().find(said), std::string::npos) << said;
+  // JSON status objects for each start and end; during the motor fault the board asks more of motor 2.
+  int fault_events = 0;
+  double motor2_excess = 0;
+  for (const auto& line : lines) {
+    const auto s = nlohmann::json::parse(line, nullptr, false);
+    if (s.contains("fault")) ++fault_events;
+    if (s.value("type", "") == "status" && s.contains("active_faults") && s["active_faults"] == nlohmann::json::array({"motor:2,0.8"})) {
+      const auto& u = s["motor_commands"];
+      motor2_excess = std::max(motor2_excess, u[2].get<double>() - (u[0].get<double>() + u[1].get<double>() + u[3].get<double>()) / 3);
+    }
+  }
+  EXPECT_EQ(fault_events, 4);
+  EXPECT_GT(motor2_excess, 0.05) << "the board should command the weak motor harder (1/sqrt(0.8): ~+12 %)";
+  // What the board reported: it received HIL_GPS only outside the 8 s loss (30 Hz), as many as were sent.
+  const auto board_lines = board.out_lines();
+  ASSERT_FALSE(board_lines.empty()) << board.err();
+  const auto b = nlohmann::json::parse(board_lines.back());
+  EXPECT_EQ(b["hil_gps_received"].get<uint64_t>(), j["sent"]["HIL_GPS"]["count"].get<uint64_t>());
+  const double flown_s = j["sim_time_s"].get<double>();
+  EXPECT_NEAR(b["hil_gps_received"].get<double>(), 30.0 * (flown_s - 8.0), 30.0);
+}
+
+TEST(FaultsE2E, BadFaultsAreRefusedWithExitTwoNamingTheProblem) {
+  const std::pair<std::vector<std::string>, std::string> cases[] = {
+      {{"--fault", "gps-los@20"}, "--fault 'gps-los@20': unknown fault 'gps-los'; did you mean 'gps-loss'?"},
+      {{"--fault", "motor:2@15"}, "fault motor: takes 2 arguments (motor:i,k), got 1"},
+      {{"--fault", "imu-bias:nan,0,0"}, "fault imu-bias: ax_m_s2: 'nan' is not a finite number"},
+      {{"--fault", "gps-loss@20+-1"}, "the duration must be more than 0"},
+      {{"--scenario", "/dev/zero"}, "--scenario: scenario '/dev/zero' is larger than 1 MiB"},
+  };
+  for (const auto& [args, message] : cases) {
+    std::vector<std::string> argv{test::hitl_binary(), "sim"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    test::Process p(argv);
+    EXPECT_EQ(p.wait(20s), 2) << args[1];
+    EXPECT_NE(p.err().find(message), std::string::npos) << p.err();
+  }
+}
+
+}  // namespace
+}  // namespace hitl

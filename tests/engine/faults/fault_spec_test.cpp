@@ -1,0 +1,111 @@
+// --fault specs, scenario files and the schedule: good and bad input, starts and ends in time.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/faults/fault_schedule.h"
+#include "engine/faults/scenario.h"
+
+namespace hitl::faults {
+namespace {
+
+TEST(FaultSpec, ParsesNameArgsStartAndDuration) {
+  auto f = parse_fault("gps-loss@20+10");
+  ASSERT_TRUE(f) << f.error().message;
+  EXPECT_EQ(f->kind, FaultKind::GpsLoss);
+  EXPECT_DOUBLE_EQ(f->start_s, 20);
+  ASSERT_TRUE(f->duration_s);
+  EXPECT_DOUBLE_EQ(*f->duration_s, 10);
+  auto m = parse_fault("motor:2,0.6@15");
+  ASSERT_TRUE(m) << m.error().message;
+  EXPECT_EQ(m->args, (std::vector<double>{2, 0.6}));
+  EXPECT_FALSE(m->duration_s);
+  EXPECT_EQ(m->text(), "motor:2,0.6@15");
+  auto d = parse_fault("hil-delay:20");
+  ASSERT_TRUE(d);
+  EXPECT_DOUBLE_EQ(d->start_s, 0);
+  EXPECT_TRUE(parse_fault("gps-degrade:2,4,5"));      // epv optional
+  EXPECT_TRUE(parse_fault("gps-degrade:2,4,5,8@1e+1"));  // an exponent is not a duration
+}
+
+TEST(FaultSpec, RefusesBadInputNamingTheFaultAndTheProblem) {
+  auto suggest = [](const std::string& n) { return n == "gps-los" ? std::string("gps-loss") : std::string(); };
+  const std::pair<const char*, const char*> bad[] = {
+      {"gps-los@20", "did you mean 'gps-loss'"},
+      {"motor:2@15", "fault motor: takes 2 arguments (motor:i,k), got 1"},
+      {"gps-loss:1", "fault gps-loss: takes 0 arguments"},
+      {"imu-bias:nan,0,0", "ax_m_s2: 'nan' is not a finite number"},
+      {"imu-bias:0,0", "takes 3 arguments"},
+      {"gps-loss@20+-3", "the duration must be more than 0"},
+      {"gps-loss@-1", "the start time must be 0.."},
+      {"gps-loss@x", "the start time after '@': 'x' is not a number"},
+      {"motor:4,0.5", "i must be within 0..3"},
+      {"motor:1.5,0.5", "i must be a whole number"},
+      {"hil-drop:1.5", "p must be within 0..1"},
+      {"gps-degrade:2,4", "takes 3 to 4 arguments"},
+  };
+  for (const auto& [text, what] : bad) {
+    auto f = parse_fault(text, suggest);
+    ASSERT_FALSE(f) << text;
+    EXPECT_NE(f.error().message.find(what), std::string::npos) << text << ": " << f.error().message;
+  }
+}
+
+TEST(Scenario, ReadsEventsWithArrayOrStringArgs) {
+  auto s = parse_scenario(R"({"description": "x", "events": [
+      {"at_s": 20, "fault": "gps-loss", "duration_s": 10},
+      {"at_s": 15, "fault": "motor", "args": [2, 0.6]},
+      {"at_s": 1, "fault": "imu-bias", "args": "0.5,0,0"}]})", "scenario");
+  ASSERT_TRUE(s) << s.error().message;
+  ASSERT_EQ(s->size(), 3u);
+  EXPECT_EQ((*s)[1].args, (std::vector<double>{2, 0.6}));
+  EXPECT_EQ((*s)[2].args, (std::vector<double>{0.5, 0, 0}));
+}
+
+TEST(Scenario, RefusesBadFilesNamingTheEvent) {
+  const std::pair<const char*, const char*> bad[] = {
+      {"[]", "must be an object {\"events\""},
+      {"{\"events\": [{\"at_s\": 1}]}", "events[0]: no \"fault\""},
+      {"{\"events\": [{\"fault\": \"gps-loss\"}]}", "events[0]: no \"at_s\""},
+      {"{\"events\": [{\"at_s\": 1, \"fault\": \"gps-loss\", \"when\": 2}]}", "unknown key 'when'"},
+      {"{\"events\": [{\"at_s\": 1, \"fault\": \"gps-loss\", \"duration_s\": -1}]}", "events[0]: fault gps-loss: the duration"},
+      {"{\"events\": [{\"at_s\": 1, \"fault\": \"motor\", \"args\": [1]}]}", "takes 2 arguments"},
+      {"{\"events\": [{\"at_s\": \"1\", \"fault\": \"gps-loss\"}]}", "at_s: must be a number"},
+      {"not json", "not JSON"},
+  };
+  for (const auto& [text, what] : bad) {
+    auto s = parse_scenario(text, "scenario 'x.json'");
+    ASSERT_FALSE(s) << text;
+    EXPECT_NE(s.error().message.find("scenario 'x.json'"), std::string::npos) << s.error().message;
+    EXPECT_NE(s.error().message.find(what), std::string::npos) << text << ": " << s.error().message;
+  }
+  auto big = load_scenario("/dev/zero");
+  ASSERT_FALSE(big);
+  EXPECT_NE(big.error().message.find("larger than 1 MiB"), std::string::npos) << big.error().message;
+}
+
+TEST(FaultSchedule, StartsAndEndsAtSimulatedTimesAndFoldsWhatIsActive) {
+  FaultSchedule s({*parse_fault("gps-loss@0.02+0.01"), *parse_fault("motor:2,0.5@0.012"), *parse_fault("hil-drop:0.5@0"),
+                   *parse_fault("hil-drop:0.5@0"), *parse_fault("baro-drift:10@0.004")});
+  std::vector<std::string> said;
+  for (int k = 1; k <= 10; ++k)
+    for (const auto& c : s.update(k * 0.004)) said.push_back(c.text());
+  ASSERT_EQ(said.size(), 6u);
+  EXPECT_EQ(said[0], "t=0.004 s fault hil-drop:0.5 started");
+  EXPECT_EQ(said[3], "t=0.012 s fault motor:2,0.5 started");
+  EXPECT_EQ(said[4], "t=0.020 s fault gps-loss started (0.01 s)");
+  EXPECT_EQ(said[5], "t=0.032 s fault gps-loss ended");
+  const auto& a = s.active();
+  EXPECT_FALSE(a.gps_loss);
+  EXPECT_DOUBLE_EQ(a.motor_effectiveness[2], 0.5);
+  EXPECT_DOUBLE_EQ(a.hil_drop_p, 0.75);  // two independent drops: 1 - 0.5 * 0.5
+  EXPECT_NEAR(a.baro_offset_Pa, 10 * (0.040 - 0.004), 1e-9);
+  ASSERT_EQ(s.records().size(), 5u);
+  EXPECT_EQ(s.records()[4].name, "gps-loss");
+  EXPECT_DOUBLE_EQ(s.records()[4].start_s, 0.020);
+  EXPECT_NEAR(*s.records()[4].end_s, 0.032, 1e-12);
+  EXPECT_FALSE(s.records()[3].end_s);
+}
+
+}  // namespace
+}  // namespace hitl::faults
