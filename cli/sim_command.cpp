@@ -279,10 +279,11 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
 
   const char* faults_group = "Faults (docs/faults.md)";
   std::string names;
-  for (const auto& f : faults::fault_catalogue()) names += std::string(names.empty() ? "" : ", ") + faults::usage(f);
+  for (const auto& f : faults::fault_catalogue()) names += std::string(names.empty() ? "" : ", ") + f.name;
   sub->add_option("--fault", opt->fault_specs,
                   "Inject a fault at simulated time T for DUR seconds (without @T: from the start; without +DUR: to the "
-                  "end), e.g. gps-loss@20+10, motor:2,0.6@15; repeatable. Faults: " + names)
+                  "end), e.g. gps-loss@20+10, motor:2,0.6@15; repeatable. Faults: " + names +
+                      " (their arguments and units: docs/faults.md)")
       ->type_name("NAME[:ARGS][@T[+DUR]]")->group(faults_group);
   sub->add_option("--scenario", opt->scenario_file,
                   "Faults from a JSON file: {\"events\": [{\"at_s\": 20, \"fault\": \"gps-loss\", \"duration_s\": 10}, ...]}")

@@ -20,7 +20,7 @@ TEST(FaultsE2E, ScenarioWithGpsLossAndWeakMotorFliesTheSquareAndIsReported) {
   test::Process sim({test::hitl_binary(), "--json", "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil),
                      "--local-port", std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "5",
                      "-t", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--scenario",
-                     std::string(HITL_SOURCE_DIR) + "/docs/examples/faults-gps-motor.json"});
+                     std::string(HITL_SOURCE_DIR) + "/docs/examples/scenarios/gps-motor.json"});
   EXPECT_EQ(sim.wait(150s), 0) << sim.err();
   board.signal(SIGINT);
   EXPECT_EQ(board.wait(20s), 0) << board.err();

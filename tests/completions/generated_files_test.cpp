@@ -3,6 +3,8 @@
 // warning from groff, mandoc or man.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include "tests/support/tools.h"
 
 namespace hitl {
@@ -91,7 +93,7 @@ TEST(ManPage, ManShowsEveryCommandAsText) {
                            "EXIT STATUS", "CONFIGURATION FILE"})
     EXPECT_NE(r.out.find(text), std::string::npos) << text << " not in:\n" << r.out.substr(0, 3000);
   EXPECT_EQ(r.out.find("\\f"), std::string::npos);  // no escape left unrendered
-  EXPECT_EQ(r.out.find("@"), std::string::npos);    // no placeholder left
+  EXPECT_FALSE(std::regex_search(r.out, std::regex("@[A-Z_]+@")));  // no @PLACEHOLDER@ left (an @ in text is fine: --fault NAME@T)
 }
 
 TEST(ConfigReference, HasASectionPerCommandWithOptions) {

@@ -9,6 +9,7 @@
 #include <csignal>
 
 #include "base/mavlink/messages.h"
+#include "engine/faults/scenario.h"
 #include "engine/vehicle/trajectory.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/mavlink_peer.h"
@@ -32,6 +33,17 @@ TEST(Examples, EveryTrajectoryFileParses) {
   }
   for (const char* expected : {"hover.json", "square.json", "figure-eight.json", "yaw-spin.json"})
     EXPECT_TRUE(test::contains(names, expected)) << expected;
+}
+
+TEST(Examples, EveryScenarioFileParses) {
+  std::size_t n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::source_path("docs/examples/scenarios"))) {
+    ++n;
+    const auto s = faults::load_scenario(entry.path().string());
+    ASSERT_TRUE(static_cast<bool>(s)) << entry.path() << ": " << s.error().message;
+    EXPECT_FALSE(s->empty()) << entry.path();
+  }
+  EXPECT_GE(n, 1U);
 }
 
 TEST(Examples, FigureEightAndYawSpinHaveTheirShape) {
