@@ -31,20 +31,29 @@ std::optional<double> number_after(const std::string& screen, const std::string&
   return std::stod(m[1].str());
 }
 
+/// `hitl target` on loopback in lockstep, and the `hitl sim --tui` command line a tmux pane runs
+/// against it (`options` between the ports and --tui); the pane stays open after hitl ends.
+struct SimAgainstTarget {
+  uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port(),
+           local = test::free_udp_port();
+  test::Process board{{test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"}};
+
+  std::string sim_command(const std::string& options) const {
+    return shell_quoted(test::hitl_binary()) + " sim -i 127.0.0.1 --hil-port " + std::to_string(hil) + " --local-port " +
+           std::to_string(local) + " --no-vio --clients " + std::to_string(clients) + " " + options +
+           " --tui; echo HITL_EXIT=$?; sleep 60";
+  }
+};
+
 TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
   const std::string tmux_bin = tmux_path();
   if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
-  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port(),
-                 local = test::free_udp_port();
-  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
-                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
-  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  SimAgainstTarget setup;
+  ASSERT_TRUE(setup.board.wait_for_stderr("EMULATED", 10s)) << setup.board.err();
 
   Tmux tmux(tmux_bin, "tui-sim");
-  const std::string sim = shell_quoted(test::hitl_binary()) + " sim -i 127.0.0.1 --hil-port " + std::to_string(hil) +
-                          " --local-port " + std::to_string(local) + " --no-vio --clients " + std::to_string(clients) +
-                          " --lockstep --speed 1 --tui; echo HITL_EXIT=$?; sleep 60";
-  tmux.start(sim);
+  tmux.start(setup.sim_command("--lockstep --speed 1"));
 
   std::string s;
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
@@ -92,8 +101,8 @@ TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
   EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
   EXPECT_NE(s.find("real-time factor"), std::string::npos) << s;  // print_summary's first line
   EXPECT_EQ(s.find("Data paths"), std::string::npos) << s;         // the dashboard is gone
-  board.signal(SIGINT);
-  board.wait(10s);
+  setup.board.signal(SIGINT);
+  setup.board.wait(10s);
 }
 
 /// The processes `pid` started (its threads' children), from /proc.
@@ -113,18 +122,12 @@ std::vector<std::string> children_of(const std::string& pid) {
 TEST(TuiE2E, FKeyFliesTheTrajectoryInProcess) {
   const std::string tmux_bin = tmux_path();
   if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
-  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port(),
-                 local = test::free_udp_port();
-  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
-                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
-  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  SimAgainstTarget setup;
+  ASSERT_TRUE(setup.board.wait_for_stderr("EMULATED", 10s)) << setup.board.err();
 
   Tmux tmux(tmux_bin, "tui-fly");
   const std::string trajectory = std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json";
-  const std::string sim = shell_quoted(test::hitl_binary()) + " sim -i 127.0.0.1 --hil-port " + std::to_string(hil) +
-                          " --local-port " + std::to_string(local) + " --no-vio --clients " + std::to_string(clients) +
-                          " --lockstep --speed 5 -t " + shell_quoted(trajectory) + " --tui; echo HITL_EXIT=$?; sleep 60";
-  tmux.start(sim);
+  tmux.start(setup.sim_command("--lockstep --speed 5 -t " + shell_quoted(trajectory)));
   std::string s;
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
   EXPECT_EQ(s.find("ARMED"), std::string::npos) << s;  // -t with --tui waits for the key
@@ -146,8 +149,8 @@ TEST(TuiE2E, FKeyFliesTheTrajectoryInProcess) {
   tmux.keys({"q"});
   ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
   EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
-  board.signal(SIGINT);
-  board.wait(10s);
+  setup.board.signal(SIGINT);
+  setup.board.wait(10s);
 }
 
 // `hitl bridge --tui`: the link panel shows the board up with a TIMESYNC round trip, the data
