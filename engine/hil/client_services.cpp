@@ -7,6 +7,7 @@
 #include "base/mavlink/enums.h"
 #include "base/mavlink/heartbeat.h"
 #include "base/mavlink/messages.h"
+#include "base/mavlink/severity.h"
 #include "base/mavlink/text_field.h"
 #include "engine/net/udp_link.h"
 
@@ -100,6 +101,17 @@ template <class M>
 void ClientServices::broadcast_own(const M& message) {
   mavlink::FrameBuffer buf;
   if (const std::size_t n = own_encoder_.encode(message, buf)) clients_->broadcast({buf.data(), n});
+}
+
+void ClientServices::announce(Severity severity, std::string_view text) {
+  mavlink::msg::Statustext st;
+  st.severity = static_cast<uint8_t>(mavlink::mav_severity(severity));
+  mavlink::set_text(st.text, text);
+  mavlink::FrameBuffer buf;
+  const std::size_t n = own_encoder_.encode(st, buf);
+  if (n == 0) return;
+  recording_.record({buf.data(), n});
+  if (clients_) clients_->broadcast({buf.data(), n});
 }
 
 /// HEARTBEAT from the simulator's sysid (STANDBY while paused) and NAMED_VALUE_* "sim_rtf" (recent

@@ -49,6 +49,10 @@ class ClientServices {
 
   /// Once a second of wall time: HEARTBEAT (STANDBY while paused) and the NAMED_VALUE_* status.
   void send_status(double now_s, double start_wall_s, const SessionStatus& status);
+  /// A STATUSTEXT from the simulator's identity (a fault started or ended): to every client, where
+  /// a ground station shows it, and into the recording, so that a recording says what was injected
+  /// when. Texts longer than STATUSTEXT's 50 characters are cut.
+  void announce(Severity severity, std::string_view text);
   /// Truth to clients when due at `sim_s`.
   void send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s);
   /// ODOMETRY to the VIO server when due at `sim_s`; true when one was sent (or refused).

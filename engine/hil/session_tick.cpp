@@ -56,6 +56,7 @@ void Session::Impl::apply_faults(EventSink& events) {
   if (fault_schedule.empty()) return;
   for (auto& change : fault_schedule.update(sim_time_s())) {
     SessionEvent e{Severity::Info, change.text(), std::nullopt};
+    services->announce(e.severity, e.text);
     e.fault = std::move(change);
     events.on_event(e);
   }

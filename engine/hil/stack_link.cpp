@@ -75,11 +75,11 @@ bool StackLink::wait_for_sitl(const std::atomic<bool>& stop, EventSink& events) 
 }
 
 void StackLink::queue(std::span<const uint8_t> bytes, std::optional<uint32_t> counted_id) {
-  recording_.record(bytes);
-  if (link_faults_.holding()) {  // hil-drop / hil-delay: the step's frames go out (or not) as one datagram later
-    link_faults_.hold(bytes, counted_id);
+  if (link_faults_.holding()) {  // hil-drop / hil-delay: the step's frames go out (or not) as one datagram later,
+    link_faults_.hold(bytes, counted_id);  // and are recorded then: a recording holds what the board was sent
     return;
   }
+  recording_.record(bytes);
   if (!link_->has_room_for(bytes.size())) flush();  // a full datagram is sent first (and its messages counted)
   link_->queue(bytes);
   if (counted_id) ++batch_[*counted_id];  // counted as sent when its datagram is
@@ -103,6 +103,7 @@ void StackLink::release_delayed(double now_s) {
   link_faults_.release_due(now_s, [&](LinkFaults::Datagram& d) {
     auto held = std::exchange(batch_, std::move(d.counts));  // frames queued since (a client's) wait for their own flush
     for (const auto& f : d.frames) {
+      recording_.record(f);
       if (!link_->has_room_for(f.size())) send_batch();
       link_->queue(f);
     }

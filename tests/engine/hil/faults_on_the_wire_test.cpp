@@ -17,6 +17,7 @@
 #include "base/mavlink/message_set.h"
 #include "base/mavlink/messages.h"
 #include "engine/hil/session.h"
+#include "engine/mavlink/tlog.h"
 #include "engine/model/x500_defaults.h"
 #include "tests/support/process.h"
 
@@ -86,7 +87,7 @@ class Board {
 /// A session to `board` with these faults, run on its own thread while the test receives.
 class Running {
  public:
-  Running(Board& board, const std::vector<std::string>& specs, bool noise = true) {
+  Running(Board& board, const std::vector<std::string>& specs, bool noise = true, const std::string& record_path = "") {
     SessionConfig c;
     c.target_ip = "127.0.0.1";
     c.hil_port = board.port();
@@ -94,6 +95,7 @@ class Running {
     c.vio = false;
     c.clients_port = 0;
     c.noise = noise;
+    c.record_path = record_path;
     c.vehicle = model::x500_vehicle_config();
     c.world = model::default_world_config();
     for (const auto& s : specs) c.faults.push_back(*faults::parse_fault(s));
@@ -197,6 +199,50 @@ TEST(FaultsOnTheWire, HilDropHalfLosesAboutHalfTheDatagrams) {
   EXPECT_LT(in_window, 125 + 24);
   const auto s = run.snapshot();
   EXPECT_EQ(s.hil_dropped_datagrams + static_cast<uint64_t>(in_window), 250u);
+}
+
+TEST(FaultsOnTheWire, TheRecordingSaysWhatWasInjectedWhen) {
+  const std::string path = ::testing::TempDir() + "faults_recording.tlog";
+  {
+    Board board;
+    Running run(board, {"gps-loss@0.5+0.5"}, true, path);
+    board.receive_until(1.5, 10);
+  }
+  auto reader = mavlink::TlogReader::open(path);
+  ASSERT_TRUE(reader) << reader.error().message;
+  const auto messages = mavlink::MessageSet::compiled();
+  mavlink::FrameParser parser(messages);
+  std::vector<std::pair<uint8_t, std::string>> said;  // sysid, text
+  mavlink::TlogRecord record;
+  while (reader->next(record)) {
+    parser.parse_datagram(record.frame, [&](const mavlink::Frame& f) {
+      if (!f.is<msg::Statustext>()) return;
+      const auto st = f.as<msg::Statustext>();
+      said.emplace_back(f.sysid, std::string(st.text.data(), strnlen(st.text.data(), st.text.size())));
+    });
+  }
+  ASSERT_EQ(said.size(), 2U);
+  EXPECT_EQ(said[0].first, kSimulatorSystemId);
+  EXPECT_EQ(said[0].second, "t=0.500 s fault gps-loss started (0.5 s)");
+  EXPECT_EQ(said[1].second, "t=1.000 s fault gps-loss ended");
+}
+
+TEST(FaultsOnTheWire, TheRecordingHoldsWhatTheBoardWasSentNotWhatHilDropDropped) {
+  const std::string path = ::testing::TempDir() + "faults_dropped.tlog";
+  {
+    Board board;
+    Running run(board, {"hil-drop:1"}, true, path);
+    EXPECT_TRUE(board.receive_until(0.5, 1.0).empty());  // everything dropped
+  }
+  auto reader = mavlink::TlogReader::open(path);
+  ASSERT_TRUE(reader) << reader.error().message;
+  const auto messages = mavlink::MessageSet::compiled();
+  mavlink::FrameParser parser(messages);
+  int hil_sensor = 0;
+  mavlink::TlogRecord record;
+  while (reader->next(record))
+    parser.parse_datagram(record.frame, [&](const mavlink::Frame& f) { hil_sensor += f.is<msg::HilSensor>() ? 1 : 0; });
+  EXPECT_EQ(hil_sensor, 0);
 }
 
 }  // namespace
