@@ -182,7 +182,7 @@ class Bridge {
   /// What the --endpoint links said (TCP connected, lost, retrying).
   void say_link_events() {
     for (auto& e : endpoints_)
-      for (const auto& ev : e->link->take_events()) observer_.on_event(ev.text, ev.warning ? Severity::Warning : Severity::Info);
+      for (const auto& ev : e->link->take_events()) observer_.on_event(ev.text, ev.severity);
   }
 
   void on_board_frame(const mavlink::Frame& f, double now) {

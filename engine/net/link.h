@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "base/common/expected.h"
+#include "base/common/severity.h"
 #include "base/mavlink/frame_parser.h"
 #include "engine/net/socket_address.h"
 
@@ -43,7 +44,7 @@ struct LinkStats {
 /// Something a link says about itself (connected, lost, retrying), for its owner to pass on.
 struct LinkEvent {
   std::string text;
-  bool warning = false;
+  Severity severity = Severity::Info;
 };
 
 /// What one read gave: a whole datagram, or a piece of a byte stream.
@@ -104,7 +105,7 @@ class Link {
 
  protected:
   explicit Link(std::string name) : name_(std::move(name)) {}
-  void say(std::string text, bool warning) { events_.push_back({std::move(text), warning}); }
+  void say(std::string text, Severity severity) { events_.push_back({std::move(text), severity}); }
 
   std::string name_;
   LinkStats stats_;

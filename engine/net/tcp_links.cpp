@@ -34,10 +34,10 @@ void TcpClientLink::maintain(double now_s) {
   if (client) {
     client_.emplace(std::move(client.value()));
     ++stats_.connects;
-    say(name_ + ": connected", false);
+    say(name_ + ": connected", Severity::Info);
   } else if (!warned_) {
     warned_ = true;
-    say(client.error().message + "; retrying every " + period_text(config_.reconnect_period_s), true);
+    say(client.error().message + "; retrying every " + period_text(config_.reconnect_period_s), Severity::Warning);
   }
 }
 
@@ -47,7 +47,7 @@ void TcpClientLink::lose(double now_s) {
   tx_.clear();
   if (config_.reconnect_period_s > 0) {
     next_connect_s_ = now_s + config_.reconnect_period_s;
-    say(name_ + ": connection closed; reconnecting every " + period_text(config_.reconnect_period_s), true);
+    say(name_ + ": connection closed; reconnecting every " + period_text(config_.reconnect_period_s), Severity::Warning);
   }
 }
 

@@ -200,7 +200,7 @@ TEST(TcpLinks, ClientReconnectsSayingSoAndSaysAFailedAttemptOnce) {
   cl.maintain(100.0);
   auto events = cl.take_events();
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_TRUE(events[0].warning);
+  EXPECT_EQ(events[0].severity, Severity::Warning);
   EXPECT_NE(events[0].text.find("; retrying every 2 s"), std::string::npos) << events[0].text;
   cl.maintain(101.0);  // not due yet
   cl.maintain(102.0);  // due, fails again: not said again
@@ -214,7 +214,7 @@ TEST(TcpLinks, ClientReconnectsSayingSoAndSaysAFailedAttemptOnce) {
   events = cl.take_events();
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].text, c.name + ": connected");
-  EXPECT_FALSE(events[0].warning);
+  EXPECT_EQ(events[0].severity, Severity::Info);
   ASSERT_TRUE(server.value()->wait_connected(1000));
 
   server.value().reset();  // the server goes: the link says so and comes back by itself later
