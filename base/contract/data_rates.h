@@ -9,7 +9,7 @@ namespace hitl {
 inline constexpr double kStepPeriod_s = 0.004;           ///< physics step and HIL_SENSOR period (250 Hz)
 inline constexpr double kVioRate_hz = 250.0;             ///< ODOMETRY to voxl-hitl-vio-server
 inline constexpr double kActuatorStreamRate_hz = 200.0;  ///< HIL_ACTUATOR_CONTROLS from the board outside lockstep
-inline constexpr uint64_t kActuatorStreamPeriod_us = 5000;
+inline constexpr uint64_t kActuatorStreamPeriod_us = static_cast<uint64_t>(1e6 / kActuatorStreamRate_hz);
 
 /// The apps processor's HIL split (target/core/hil_split.h).
 inline constexpr uint64_t kHilImuPublishPeriod_us = 4000;        ///< hil_sensor_imu (HIL_IMU_PUBLISH_INTERVAL_US, 250 Hz)

@@ -7,13 +7,14 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "tests/support/tools.h"
 
 namespace hitl {
 namespace {
@@ -22,13 +23,6 @@ namespace fs = std::filesystem;
 
 /// folder -> the folders it may include and link (patterns: "base/*" is every folder under base/).
 using LayerTable = std::map<std::string, std::vector<std::string>>;
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 /// The ```layers block of docs/architecture.md: "folder: allowed allowed ..." lines, # comments.
 LayerTable parse_layer_table(const std::string& markdown) {
@@ -104,13 +98,13 @@ std::map<std::string, std::string> source_files(const fs::path& root) {
     for (const auto& entry : fs::recursive_directory_iterator(root / top)) {
       const auto ext = entry.path().extension();
       if (entry.is_regular_file() && (ext == ".h" || ext == ".cpp" || ext == ".hpp"))
-        files[fs::relative(entry.path(), root).generic_string()] = read_text(entry.path());
+        files[fs::relative(entry.path(), root).generic_string()] = test::read_text(entry.path().string());
     }
   }
   return files;
 }
 
-LayerTable the_table() { return parse_layer_table(read_text(fs::path(HITL_SOURCE_DIR) / "docs/architecture.md")); }
+LayerTable the_table() { return parse_layer_table(test::read_text(test::source_path("docs/architecture.md"))); }
 
 TEST(Layers, TheTableIsThere) {
   const auto table = the_table();
@@ -149,7 +143,7 @@ struct LibraryLinks {
 
 std::map<std::string, LibraryLinks> read_links() {
   std::map<std::string, LibraryLinks> libraries;
-  std::istringstream lines(read_text(HITL_LAYER_LINKS));
+  std::istringstream lines(test::read_text(HITL_LAYER_LINKS));
   for (std::string line; std::getline(lines, line);) {
     const auto a = line.find('|'), b = line.find('|', a + 1);
     if (a == std::string::npos || b == std::string::npos) continue;
