@@ -53,6 +53,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     if (!w) return w.error();
     s.recording = Recording(std::move(w.value()));
   }
+  s.flight_record.emplace(s.recording, config.sysid, config.protocol);
   s.pacer.emplace(config.world.physics.step_s, config.speed);  // one step of simulated time per tick
   s.paths.emplace(config);
   s.fault_schedule = faults::FaultSchedule(config.faults);

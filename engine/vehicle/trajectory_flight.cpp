@@ -55,6 +55,8 @@ PilotOutput TrajectoryFlight::step(double t_s, const PilotPose& pose, const std:
     pilot_.observe_truth(flight_t_s, *truth_from_start);
   }
   auto out = pilot_.step(flight_t_s, from_start);
+  if (out.reference)
+    for (std::size_t k = 0; k < 3; ++k) out.reference->p_ENU_m[k] += origin_->p_ENU_m[k];  // back to the pose's frame
   if (keep_trace_ && pilot_.state() == PilotState::Trajectory)
     trace_.push_back({flight_t_s, from_start.p_ENU_m,
                       truth_from_start ? std::optional(truth_from_start->p_ENU_m) : std::nullopt});

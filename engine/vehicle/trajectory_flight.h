@@ -54,6 +54,7 @@ class TrajectoryFlight {
   /// One tick at `t_s` (any clock) on `pose` (world ENU, any origin), scored also against `truth`
   /// (world ENU, its own origin) when given; what to send back. The first tick fixes the start of
   /// the clock and the pose's origin; the truth's origin is its first sample before the takeoff.
+  /// The output's reference is in the pose's frame (world ENU).
   PilotOutput step(double t_s, const PilotPose& pose, const std::optional<PilotPose>& truth = std::nullopt);
 
   PilotState state() const { return pilot_.state(); }
