@@ -49,11 +49,6 @@ const char* marker_color(Severity s) {
   return "#2ca02c";
 }
 
-std::string svg_name(const std::string& id) {
-  std::string out = "hitl_";
-  for (char c : id) out += (std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
-  return out;
-}
 
 }  // namespace
 
@@ -73,7 +68,7 @@ std::string gnuplot_script(const std::vector<Plot>& plots, const std::vector<Eve
     const auto& plot = plots[p];
     s << "reset\n";
     s << "set terminal svg size " << options.width_px << ',' << (plot.equal_axes ? options.width_px * 2 / 3 : options.height_px)
-      << " dynamic noenhanced font 'sans,11' background rgb 'white' name '" << svg_name(plot.id) << "'\n";
+      << " dynamic noenhanced font 'sans,11' background rgb 'white'\n";
     s << "set output " << quoted(dir + "/" + plot.id + ".svg") << "\n";
     s << "set title " << quoted(plot.title) << "\nset xlabel " << quoted(plot.x_label) << "\nset ylabel " << quoted(plot.y_label) << "\n";
     s << "set grid\nset key outside right top vertical\nset border 3\nset tics nomirror\n";

@@ -1,6 +1,6 @@
 // Drawing the report's plots with gnuplot (Debian gnuplot-nox), run once per report as a separate
-// process on one script: each plot to an SVG (svg terminal), one group per series titled with the
-// series' name, so that a reader of the SVG can tell which path is which. docs/report.md says why
+// process on one script: each plot to an SVG (svg terminal), one group per series (id gnuplot_plot_N,
+// N from 1 in the plot's order) titled with the series' name, so that a reader of the SVG can tell which path is which. docs/report.md says why
 // gnuplot rather than PLplot.
 #pragma once
 

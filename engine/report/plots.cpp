@@ -1,5 +1,7 @@
 #include "engine/report/plots.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace hitl::report {
@@ -38,6 +40,33 @@ std::string figure(const char* format, double v) {
   char text[64];
   std::snprintf(text, sizeof text, format, v);
   return text;
+}
+
+/// Drops each point within `fraction` of the plot's extent (both axes) of the last one kept: what a
+/// drawing cannot tell apart (gnuplot's SVG draws a repeated device point once), so that the points a
+/// figure claims are the points its SVG draws.
+void drop_indistinct(Plot& plot, double fraction) {
+  double x0 = plot.x_min, x1 = plot.x_max, y0 = 0, y1 = 0;
+  bool first = plot.x_max <= plot.x_min;
+  bool first_y = true;
+  for (const auto& s : plot.series)
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (first) x0 = x1 = s.x[i], first = false;
+      if (first_y) y0 = y1 = s.y[i], first_y = false;
+      x0 = std::min(x0, s.x[i]), x1 = std::max(x1, s.x[i]), y0 = std::min(y0, s.y[i]), y1 = std::max(y1, s.y[i]);
+    }
+  const double tol_x = fraction * (x1 - x0), tol_y = fraction * (y1 - y0);
+  for (auto& s : plot.series) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (kept > 0 && std::abs(s.x[i] - s.x[kept - 1]) <= tol_x && std::abs(s.y[i] - s.y[kept - 1]) <= tol_y) continue;
+      s.x[kept] = s.x[i];
+      s.y[kept] = s.y[i];
+      ++kept;
+    }
+    s.x.resize(kept);
+    s.y.resize(kept);
+  }
 }
 
 }  // namespace
@@ -115,14 +144,18 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     push(std::move(p));
   }
   for (auto& p : plots) {
-    p.x_min = log.start_s;
-    p.x_max = log.start_s + log.duration_s;
+    if (p.time_axis) {
+      p.x_min = log.start_s;
+      p.x_max = log.start_s + log.duration_s;
+    }
+    drop_indistinct(p, options.indistinct_fraction);
   }
   for (auto& p : plots)
     for (const auto& s : p.series)
       if (s.x.size() < s.samples && s.style != SeriesStyle::Reference) {
         p.note += std::string(p.note.empty() ? "" : "; ") + "series with more than " + std::to_string(n) +
-                  " samples are drawn thinned evenly to about that many points";
+                  " samples are drawn thinned evenly to about that many points (data-series on the figure: points "
+                  "drawn, samples recorded)";
         break;
       }
   return plots;

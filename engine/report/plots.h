@@ -37,10 +37,14 @@ struct Plot {
 
 struct PlotOptions {
   std::size_t max_points = 2500;  ///< per series
+  /// A point within this fraction of the plot's extent (both axes) of the last one drawn is left out:
+  /// no drawing can tell them apart (1e-4 of a ~850 px wide plot is 0.085 px; SVG keeps 0.01 px).
+  double indistinct_fraction = 1e-4;
 };
 
 /// Every plot the log has data for, in the report's order; a plot with no data is left out (the
-/// log's `missing` says why).
+/// log's `missing` says why). Series are thinned (`thinned`), then points no drawing can tell
+/// apart are dropped.
 std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options = {});
 
 /// The events drawn as markers on every time axis (at most this many; the table lists them all).
