@@ -231,6 +231,33 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   std::cout << "screenshot: " << shot << " (" << shot_bytes << " bytes)\n";
 }
 
+TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults) {
+  // hitl sim -t --report against hitl target: no --record given, the recording goes beside the page.
+  const std::string dir = test::temp_dir();
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t",
+                     std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--fault", "gps-loss@15+3", "--report",
+                     dir + "/flight.html"});
+  EXPECT_EQ(sim.wait(150s), 0) << sim.err();
+  board.signal(SIGINT);
+  board.wait(20s);
+  EXPECT_EQ(last_line(sim.out()), dir + "/flight.html") << sim.out();
+  EXPECT_NE(sim.err().find("--report: recording to " + dir + "/flight.tlog"), std::string::npos) << sim.err();
+  EXPECT_TRUE(std::filesystem::exists(dir + "/flight.tlog"));
+  const std::string page = read_file(dir + "/flight.html");
+  for (const char* id : {"top-view", "altitude", "tracking-error", "motors", "rates"})
+    EXPECT_NE(page.find(std::string("<figure id=\"plot-") + id + "\""), std::string::npos) << id;
+  // The fault's start and end and the pilot's states are events with their simulated times.
+  EXPECT_NE(page.find("<td>15.00</td><td>simulator</td><td>info</td><td>t=15.000 s fault gps-loss started (3 s)</td>"),
+            std::string::npos);
+  EXPECT_NE(page.find("<td>pilot</td><td>info</td><td>trajectory: HOLD (trajectory flown)</td>"), std::string::npos);
+  EXPECT_EQ(page.find("What this log lacks</h2>\n<ul class=\"lacks\" id=\"lacks\">\n<li>ground truth"), std::string::npos);
+}
+
 TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
   // hitl target (the board's MAVLink, no simulator) recorded by hitl inspect: no truth, no pilot.
   const std::string dir = test::temp_dir();
