@@ -11,8 +11,8 @@
 #include "engine/hil/data_paths.h"
 #include "engine/hil/pacer.h"
 #include "engine/hil/pause_clock.h"
-#include "engine/hil/flight_record.h"
 #include "engine/hil/recording.h"
+#include "engine/vehicle/pilot_record.h"
 #include "engine/hil/session.h"
 #include "engine/hil/stack_link.h"
 #include "engine/hil/traffic.h"
@@ -35,7 +35,7 @@ struct Session::Impl {
   model::TouchdownMonitor touchdowns;
   Traffic traffic;
   Recording recording;
-  std::optional<FlightRecord> flight_record;  ///< -t with --record: the pilot's setpoints, errors and states
+  std::optional<vehicle::PilotRecord> pilot_record;  ///< -t with --record: the pilot's setpoints, errors and states
   PauseClock clock;
   std::unique_ptr<StackLink> stack;         ///< the board or PX4 SITL, lockstep
   std::unique_ptr<ClientServices> services;  ///< client port, status, truth, VIO

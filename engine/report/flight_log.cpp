@@ -119,8 +119,9 @@ struct VehicleState {
   std::optional<std::string> mode;
 };
 
-std::string source_name(const mavlink::Frame& f, std::optional<uint8_t> sim_sysid) {
-  if (sim_sysid && f.sysid == *sim_sysid) return f.compid == mavlink::kCompIdPathPlanner ? "pilot" : "simulator";
+std::string source_name(const mavlink::Frame& f, uint8_t sim_id) {
+  if (f.compid == mavlink::kCompIdPathPlanner) return "pilot";
+  if (f.sysid == sim_id) return "simulator";
   return "system " + std::to_string(f.sysid);
 }
 
@@ -147,6 +148,9 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
       });
     }
   }
+  // The simulator: who sent HIL_SENSOR; without one (a client's recording, hitl fly trajectory
+  // --report through a session), hitl's simulator id, whose truth and status reach clients.
+  const uint8_t sim_id = sim_sysid.value_or(kSimulatorSystemId);
   // Pass 2: the series.
   auto reader = mavlink::TlogReader::open(path);
   if (!reader) return reader.error();
@@ -191,7 +195,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     last_t_s = t_s;
     parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
       ++log.frames;
-      const bool from_sim = sim_sysid && f.sysid == *sim_sysid;
+      const bool from_sim = f.sysid == sim_id;
+      const bool from_pilot = f.compid == mavlink::kCompIdPathPlanner;  // pilot_record.h: under sim -t or fly trajectory
       switch (f.msgid) {
         case msg::HilSensor::kId:
           if (from_sim) arrive(sensor, t_s, wall_us);
@@ -212,12 +217,12 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
         }
         case msg::PositionTargetLocalNed::kId: {
           const auto sp = f.as<msg::PositionTargetLocalNed>();
-          add_point(from_sim ? log.setpoint : vehicle_setpoint, t_s, sp.x, sp.y, sp.z);
+          add_point(from_pilot ? log.setpoint : vehicle_setpoint, t_s, sp.x, sp.y, sp.z);
           break;
         }
         case msg::NamedValueFloat::kId: {
           const auto nv = f.as<msg::NamedValueFloat>();
-          if (from_sim && mavlink::text_of(nv.name) == kTrackingErrorName) {
+          if (from_pilot && mavlink::text_of(nv.name) == kTrackingErrorName) {
             add(log.tracking_error_m, t_s, nv.value);
             tracking_sum_sq += static_cast<double>(nv.value) * nv.value;
           }
@@ -259,7 +264,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
         }
         case msg::Statustext::kId: {
           const auto st = f.as<msg::Statustext>();
-          event(t_s, mavlink::severity_of(st.severity), source_name(f, sim_sysid), mavlink::text_of(st.text));
+          event(t_s, mavlink::severity_of(st.severity), source_name(f, sim_id), mavlink::text_of(st.text));
           break;
         }
         case msg::Heartbeat::kId: {
@@ -268,8 +273,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           auto& v = vehicles[f.sysid];
           const bool armed = (hb.base_mode & mavlink::mode_flag::kSafetyArmed) != 0;
           const auto mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
-          if (v.armed != armed) event(t_s, Severity::Info, source_name(f, sim_sysid), armed ? "armed" : "disarmed");
-          if (v.mode != mode) event(t_s, Severity::Info, source_name(f, sim_sysid), "mode " + mode);
+          if (v.armed != armed) event(t_s, Severity::Info, source_name(f, sim_id), armed ? "armed" : "disarmed");
+          if (v.mode != mode) event(t_s, Severity::Info, source_name(f, sim_id), "mode " + mode);
           v.armed = armed;
           v.mode = mode;
           break;
@@ -301,8 +306,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   };
   lacks(!log.simulated_time, "the simulator's clock (HIL_SENSOR from a simulator): times are seconds since the first record");
   lacks(log.truth.size() == 0, "ground truth (ODOMETRY with estimator MOCAP from the simulator; hitl sim --record writes it)");
-  lacks(log.setpoint.size() == 0, "setpoints (POSITION_TARGET_LOCAL_NED; hitl sim -t --record writes the pilot's)");
-  lacks(log.tracking_error_m.size() == 0, "the tracking error (NAMED_VALUE_FLOAT trk_err; hitl sim -t --record writes it)");
+  lacks(log.setpoint.size() == 0, "setpoints (POSITION_TARGET_LOCAL_NED; hitl sim -t --record and hitl fly trajectory --report write the pilot's)");
+  lacks(log.tracking_error_m.size() == 0, "the tracking error (NAMED_VALUE_FLOAT trk_err; hitl sim -t --record and hitl fly trajectory --report write it)");
   lacks(log.estimate.size() == 0, "the vehicle's position estimate (LOCAL_POSITION_NED)");
   lacks(log.estimate_attitude.size() == 0, "the vehicle's attitude (ATTITUDE)");
   lacks(log.motors[0].size() == 0, "motor commands (HIL_ACTUATOR_CONTROLS)");

@@ -68,12 +68,13 @@ struct FlightLog {
   double duration_s = 0;        ///< first to last record, in t_s
   double wall_duration_s = 0;   ///< first to last record, tlog timestamps
 
-  Track setpoint;               ///< the trajectory pilot's reference (POSITION_TARGET_LOCAL_NED, hitl sim -t)
-  Track truth;                  ///< the simulator's ground truth (ODOMETRY, estimator MOCAP)
+  Track setpoint;               ///< the trajectory pilot's reference (POSITION_TARGET_LOCAL_NED from MAV_COMP_ID_PATHPLANNER), else the vehicle's
+  Track truth;                  ///< the simulator's ground truth (ODOMETRY, estimator MOCAP, from the system that sent
+                                ///< HIL_SENSOR, or from hitl's simulator id 250 in a log without HIL_SENSOR)
   Track estimate;               ///< the vehicle's LOCAL_POSITION_NED
   AttitudeTrack truth_attitude;
   AttitudeTrack estimate_attitude;  ///< ATTITUDE
-  Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err: what the session's tracking RMS/max are of
+  Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err from the pilot: what the tracking RMS/max are of
   std::optional<TrackingSummary> tracking;
   std::array<Series, 4> motors;  ///< HIL_ACTUATOR_CONTROLS controls[0..3]
   std::array<Series, 6> ekf_ratios;  ///< ESTIMATOR_STATUS, in kEkfRatioNames' order

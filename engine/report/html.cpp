@@ -20,7 +20,7 @@ std::string inline_svg(const std::string& svg) {
   return start == std::string::npos ? std::string{} : svg.substr(start);
 }
 
-constexpr const char* kStyle = R"(body{font-family:sans-serif;margin:24px auto;max-width:1100px;color:#222}
+constexpr const char* kStyle = R"(body{font-family:sans-serif;margin:24px auto;padding:0 16px;max-width:1100px;color:#222}
 h1{font-size:22px}h2{font-size:17px;margin-top:28px}table{border-collapse:collapse;font-size:13px}
 td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}th{background:#f3f3f3}
 figure{margin:18px 0;border:1px solid #ddd;padding:6px}figure svg{width:100%;height:auto}

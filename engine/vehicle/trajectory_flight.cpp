@@ -116,6 +116,11 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
     });
   }
   std::optional<TrajectoryFlight> flight;
+  std::optional<PilotRecord> record;
+  if (options.record) {
+    link.record_frames(options.record);
+    record.emplace(options.record, options.record_sysid);
+  }
   auto on_frame = [&](const mavlink::Frame& f) {
     if (f.is<msg::GlobalPositionInt>() && !home_amsl_m) {
       const auto p = f.as<msg::GlobalPositionInt>();
@@ -138,7 +143,10 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
     on_frame(f);
     return home_amsl_m && have_position && have_yaw;
   });
-  const auto forget_truth = [&] { link.on_other_systems({}); };  // the handler refers to this frame's locals
+  const auto forget_truth = [&] {  // the handlers refer to this frame's locals
+    link.on_other_systems({});
+    link.record_frames({});
+  };
   if (!home_amsl_m || !have_position) {
     forget_truth();
     if (stopped()) return FlightResult{PilotState::Init, "", true, options.mode, {}, {}, {}};
@@ -152,6 +160,8 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
     for (const auto& c : out.commands) link.send(c);
     if (out.rc) link.send(*out.rc);
     if (out.event) note(*out.event);
+    if (record && out.reference) record->setpoint(static_cast<uint32_t>(t_s * 1000), *out.reference, out.tracking_error_m);
+    if (record && out.event) record->note(flight->state() == PilotState::Failed ? Severity::Error : Severity::Info, *out.event);
   }
   forget_truth();
   auto result = flight->result();

@@ -258,6 +258,41 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
   EXPECT_EQ(page.find("What this log lacks</h2>\n<ul class=\"lacks\" id=\"lacks\">\n<li>ground truth"), std::string::npos);
 }
 
+TEST(ReportE2E, FlyTrajectoryReportThroughASessionIsScoredOnTheEstimate) {
+  // hitl fly trajectory --report, through a session: the link's frames (the board's telemetry, the
+  // session's truth) and the pilot's setpoints and errors, against the board's estimate.
+  const std::string dir = test::temp_dir();
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", std::to_string(clients), "--lockstep",
+                     "--speed", "5", "--duration", "300"});
+  ASSERT_TRUE(sim.wait_for_stderr("clients on", 10s)) << sim.err();
+  auto r = test::run_hitl({"--json", "fly", "--session-port", std::to_string(clients), "-i", "127.0.0.1", "--port",
+                           std::to_string(test::free_udp_port()), "--local-port", std::to_string(test::free_udp_port()),
+                           "trajectory", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--report", dir + "/fly.html"},
+                          120s);
+  sim.signal(SIGINT);
+  sim.wait(20s);
+  board.signal(SIGINT);
+  board.wait(20s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto j = test::last_json_line(r.out);
+  EXPECT_EQ(j["report"]["path"], dir + "/fly.html");
+  const std::string page = read_file(dir + "/fly.html");
+  EXPECT_NE(page.find("RMS " + fixed2(j["rms_m"]) + " m, max " + fixed2(j["max_m"]) + " m (" +
+                      std::to_string(j["samples"].get<uint64_t>()) + " samples)"),
+            std::string::npos)
+      << j.dump().substr(0, 300);
+  const auto figures = figures_of(page);
+  for (const char* id : {"top-view", "altitude", "tracking-error"}) EXPECT_TRUE(figures.count(id)) << id;
+  bool truth = false;
+  for (const auto& s : figures.at("top-view")) truth = truth || s.title == "truth";
+  EXPECT_TRUE(truth) << "the session's truth ODOMETRY reached the recording";
+}
+
 TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
   // hitl target (the board's MAVLink, no simulator) recorded by hitl inspect: no truth, no pilot.
   const std::string dir = test::temp_dir();

@@ -1,4 +1,4 @@
-#include "engine/hil/flight_record.h"
+#include "engine/vehicle/pilot_record.h"
 
 #include "base/mavlink/enums.h"
 #include "base/mavlink/messages.h"
@@ -6,26 +6,23 @@
 #include "base/mavlink/text_field.h"
 #include "engine/frames/frames.h"
 
-namespace hitl::hil {
+namespace hitl::vehicle {
 
 namespace {
 /// POSITION_TARGET_LOCAL_NED's type_mask: position, velocity and yaw given; acceleration and yaw rate not.
 constexpr uint16_t kIgnoreAccelerationAndYawRate = (1u << 6) | (1u << 7) | (1u << 8) | (1u << 11);
 }  // namespace
 
-FlightRecord::FlightRecord(Recording& recording, uint8_t sysid, mavlink::Version protocol)
-    : recording_(recording), encoder_(sysid, mavlink::kCompIdPathPlanner, protocol) {}
+PilotRecord::PilotRecord(Sink sink, uint8_t sysid, mavlink::Version protocol)
+    : sink_(std::move(sink)), encoder_(sysid, mavlink::kCompIdPathPlanner, protocol) {}
 
 template <class M>
-void FlightRecord::record(const M& message) {
-  if (!recording_.active()) return;
+void PilotRecord::record(const M& message) {
   mavlink::FrameBuffer buf;
-  if (const std::size_t n = encoder_.encode(message, buf)) recording_.record({buf.data(), n});
+  if (const std::size_t n = encoder_.encode(message, buf)) sink_({buf.data(), n});
 }
 
-void FlightRecord::setpoint(uint64_t time_us, const vehicle::TrajectoryReference& ref, std::optional<double> tracking_error_m) {
-  if (!recording_.active()) return;
-  const auto time_boot_ms = static_cast<uint32_t>(time_us / 1000);
+void PilotRecord::setpoint(uint32_t time_boot_ms, const TrajectoryReference& ref, std::optional<double> tracking_error_m) {
   const Eigen::Vector3d p_NED_m = frames::enu_to_ned({ref.p_ENU_m[0], ref.p_ENU_m[1], ref.p_ENU_m[2]});
   const Eigen::Vector3d v_NED_m_s = frames::enu_to_ned({ref.v_ENU_m_s[0], ref.v_ENU_m_s[1], ref.v_ENU_m_s[2]});
   mavlink::msg::PositionTargetLocalNed sp;
@@ -48,11 +45,11 @@ void FlightRecord::setpoint(uint64_t time_us, const vehicle::TrajectoryReference
   record(err);
 }
 
-void FlightRecord::note(Severity severity, std::string_view text) {
+void PilotRecord::note(Severity severity, std::string_view text) {
   mavlink::msg::Statustext st;
   st.severity = static_cast<uint8_t>(mavlink::mav_severity(severity));
   mavlink::set_text(st.text, text);
   record(st);
 }
 
-}  // namespace hitl::hil
+}  // namespace hitl::vehicle
