@@ -20,7 +20,7 @@ Expected<report::ReportResult> write_report_and_say(const GlobalOptions& g, cons
                                                     const std::string& tlog_path, const std::string& html_path) {
   auto r = report::write_report(tlog_path, html_path);
   if (!r) {
-    log_error(command, "report: " + r.error().message);
+    log_error(command, (command == "report" ? "" : "--report: ") + r.error().message);
     return r.error();
   }
   if (!g.json && !g.quiet) {

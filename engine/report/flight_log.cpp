@@ -194,6 +194,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     last_wall_us = wall_us;
     last_t_s = t_s;
     parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
+      if (f.desc == nullptr) return;  // an id nobody described, its checksum unchecked: counted by the parser
       ++log.frames;
       const bool from_sim = f.sysid == sim_id;
       const bool from_pilot = f.compid == mavlink::kCompIdPathPlanner;  // pilot_record.h: under sim -t or fly trajectory
@@ -283,7 +284,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
       }
     });
   }
-  if (log.frames == 0) return Error::input("'" + path + "' holds no MAVLink frame (is it a .tlog?)");
+  if (log.frames == 0) return Error::input("'" + path + "' holds no MAVLink frame of a known message (is it a .tlog?)");
   log.skipped_bytes = reader->stats().skipped_bytes;
   log.parse_errors = parser.stats().crc_errors + parser.stats().unknown_ids;
   log.start_s = *first_t_s;

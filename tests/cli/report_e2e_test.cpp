@@ -340,9 +340,17 @@ TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
 TEST(ReportE2E, NotATlogIsBadInputNamed) {
   const std::string dir = test::temp_dir();
   std::ofstream(dir + "/notes.txt") << "not a telemetry log\n";
+  {  // noise (fixed, so the same every run): whatever looks like a frame of an unknown id is not a log
+    std::string bytes(100000, '\0');
+    uint32_t x = 12345;
+    for (char& c : bytes) c = static_cast<char>((x = x * 1664525u + 1013904223u) >> 24);
+    std::ofstream(dir + "/random.tlog", std::ios::binary) << bytes;
+  }
+  auto noise = test::run_hitl({"report", dir + "/random.tlog"});
+  EXPECT_EQ(noise.exit_code, 2) << noise.err;
   auto r = test::run_hitl({"report", dir + "/notes.txt"});
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find(dir + "/notes.txt' holds no MAVLink frame"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("hitl report: '" + dir + "/notes.txt' holds no MAVLink frame"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/notes.html"));
 }
 
