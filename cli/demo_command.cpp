@@ -3,7 +3,12 @@
 // square, land), then a short report: tracking error, rates achieved, the board's estimate
 // against the simulator's truth. No board, no network, no configuration. Ctrl-C stops it all.
 // --tui: the sim dashboard (docs/tui.md) on the flight, in real time unless --speed says otherwise.
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <mutex>
@@ -11,6 +16,7 @@
 
 #include "cli/commands.h"
 #include "cli/number_check.h"
+#include "cli/report_output.h"
 #include "cli/session_dashboard.h"
 #include "emulator/board.h"
 #include "engine/hil/session.h"
@@ -32,7 +38,19 @@ struct DemoOptions {
   bool speed_given = false;     ///< --speed on the command line (--tui otherwise flies in real time)
   bool tui = false;             ///< --tui: the sim dashboard on the demo
   vehicle::StickMode mode = vehicle::StickMode::Velocity;
+  std::string record_path;      ///< --record (empty: demo.tlog in a new directory under $TMPDIR)
+  std::string report_path;      ///< --report (empty: demo.html beside the recording)
+  bool no_report = false;       ///< --no-report
 };
+
+/// A new directory for the demo's recording and report: $TMPDIR/hitl-demo-XXXXXX.
+Expected<std::string> demo_directory() {
+  std::string tmpl = (std::filesystem::temp_directory_path() / "hitl-demo-XXXXXX").string();
+  if (::mkdtemp(tmpl.data()) == nullptr)
+    return Error::unavailable("cannot make a directory for the recording under " + std::filesystem::temp_directory_path().string() +
+                              ": " + std::strerror(errno) + " (--record FILE.tlog, or --no-report)");
+  return tmpl;
+}
 
 /// A loopback UDP port nobody uses right now (the OS picks it).
 Expected<uint16_t> free_port() {
@@ -145,6 +163,18 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   session.world = model::default_world_config();
   session.trajectory = std::move(trajectory.value());
   session.trajectory_mode = o.mode;
+  if (!o.no_report || !o.record_path.empty()) {
+    if (o.record_path.empty()) {
+      auto dir = demo_directory();
+      if (!dir) {
+        log_error("demo", dir.error().message);
+        return exit_code(dir.error());
+      }
+      o.record_path = *dir + "/demo.tlog";
+    }
+    if (o.report_path.empty()) o.report_path = default_report_path(o.record_path);
+    session.record_path = o.record_path;
+  }
   {
     net::UdpEndpoint::Config c;
     c.bind_address = session.clients_bind;
@@ -209,6 +239,15 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   const bool done = *end == hil::Session::EndReason::TrajectoryDone;
   const double sim_s = s.sim_time_s;
   const auto& err = estimate.estimate_error;
+  // The report of the recording: written before the summary, its path printed last.
+  std::optional<report::ReportResult> written;
+  bool report_failed = false;
+  if (!o.no_report) {
+    if (!s.record_error.empty()) log_error("demo", "--record: " + s.record_error + "; the recording is incomplete");
+    auto r = write_report_and_say(g, "demo", o.record_path, o.report_path);
+    if (r) written = *r;
+    else report_failed = true;
+  }
   if (g.json) {
     print_json_line({{"type", "summary"},
                      {"ok", done},
@@ -230,7 +269,9 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
                                          {"attitude_samples", err.attitude_samples}}},
                      {"board", {{"hil_sensor_received", b.hil_sensor_received}, {"hil_gps_received", b.hil_gps_received},
                                 {"odometry_received", b.odometry_received}, {"actuators_sent", b.actuators_sent},
-                                {"malformed", b.malformed}}}});
+                                {"malformed", b.malformed}}},
+                     {"recording", o.record_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.record_path)},
+                     {"report", written ? report_json(*written) : nlohmann::json(nullptr)}});
   } else {
     // A demo stopped before it flew has measured nothing: n/a, not zeros.
     const bool tracked = s.trajectory_samples > 0, timed = sim_s > 0;
@@ -253,8 +294,11 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
                   figure(err.attitude_samples > 0, "%.2f deg", err.attitude_rms_deg).c_str(), sim_s, s.wall_time_s,
                   static_cast<unsigned long long>(b.hil_sensor_received), static_cast<unsigned long long>(b.malformed));
     std::cout << text << "Next: README.md (a real board, PX4 SITL, the other commands).\n";
+    if (!o.record_path.empty()) std::cout << "Recorded in " << o.record_path << (written ? "; the flight drawn:" : "") << '\n';
+    if (written) std::cout << written->html_path << '\n';
   }
-  return done ? kExitOk : kExitFailed;
+  std::cout << std::flush;
+  return done && !report_failed ? kExitOk : kExitFailed;
 }
 
 }  // namespace
@@ -272,6 +316,11 @@ void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                                                                                   {"attitude", vehicle::StickMode::Attitude}}))
       ->default_str("velocity");
   auto* speed = sub->get_option("--speed");
+  sub->add_option("--record", o->record_path, "Save everything sent and received to this .tlog (default: demo.tlog in a new "
+                                              "directory under $TMPDIR)")->type_name("FILE.tlog");
+  sub->add_option("--report", o->report_path, "Write the flight's report (hitl report) here (default: the recording's name "
+                                              "with .html); its path is the last line printed")->type_name("FILE.html");
+  sub->add_flag("--no-report", o->no_report, "No report (and no recording unless --record)");
   sub->add_flag("--tui", o->tui,
                 "Watch it on the sim dashboard (docs/tui.md), in real time unless --speed is given; the report "
                 "follows when the flight ends or on q. Without a terminal: the status lines");

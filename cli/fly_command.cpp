@@ -10,6 +10,9 @@
 #include "cli/commands.h"
 #include "cli/link_options.h"
 #include "cli/number_check.h"
+#include "cli/report_output.h"
+#include "base/common/clock.h"
+#include "engine/mavlink/tlog.h"
 #include "engine/hil/session_config.h"
 #include "engine/vehicle/action.h"
 #include "engine/vehicle/trajectory_flight.h"
@@ -24,6 +27,8 @@ struct FlyOptions {
   std::string trajectory_file;
   double rc_rate_hz = 20;
   vehicle::StickMode mode = vehicle::StickMode::Velocity;
+  std::string record_path;  ///< trajectory --record FILE.tlog
+  std::string report_path;  ///< trajectory --report FILE.html (records to FILE.tlog without --record)
 };
 
 int finish(const GlobalOptions& g, const char* action, bool ok, const std::string& text, nlohmann::json extra = {}) {
@@ -45,8 +50,41 @@ int fly_trajectory(const GlobalOptions& g, const FlyOptions& o, vehicle::Vehicle
   fo.estimate_wait_s = o.wait_s;
   fo.truth_sysid = hil::kSimulatorSystemId;  // through a session: its ground truth
   fo.keep_trace = g.json;
+  // --record / --report: what the link carried and the pilot's setpoints, as hitl sim -t records them.
+  std::string record_path = o.record_path;
+  if (record_path.empty() && !o.report_path.empty()) {
+    const std::string ext = ".html";
+    const auto& r = o.report_path;
+    record_path = (r.size() > ext.size() && r.compare(r.size() - ext.size(), ext.size(), ext) == 0 ? r.substr(0, r.size() - ext.size()) : r) + ".tlog";
+    log_info(g, "hitl fly: --report: recording to " + record_path);
+  }
+  std::optional<mavlink::TlogWriter> writer;
+  if (!record_path.empty()) {
+    auto w = mavlink::TlogWriter::open(record_path);
+    if (!w) {
+      log_error("fly", "--record: " + w.error().message);
+      return exit_code(w.error());
+    }
+    writer.emplace(std::move(w.value()));
+    fo.record = [&writer](std::span<const uint8_t> frame) {
+      if (writer->ok()) writer->write(static_cast<uint64_t>(unix_time_ns() / 1000), frame);
+    };
+  }
   auto flown = vehicle::fly_trajectory(link, std::move(trajectory), fo, [&](const std::string& text) { log_info(g, "hitl fly: " + text); });
-  if (!flown) return finish(g, "trajectory", false, flown.error().message);
+  std::optional<report::ReportResult> written;
+  if (writer) {
+    writer->flush();
+    if (!writer->ok()) log_error("fly", "--record: " + writer->error() + "; the recording is incomplete");
+    if (!o.report_path.empty()) {
+      auto r = write_report_and_say(g, "fly", record_path, o.report_path);
+      if (r) written = *r;
+    }
+  }
+  const auto say_report = [&](int code) {
+    if (written && !g.json) std::cout << written->html_path << std::endl;
+    return (!o.report_path.empty() && !written) ? kExitFailed : code;
+  };
+  if (!flown) return say_report(finish(g, "trajectory", false, flown.error().message));
   const vehicle::FlightResult& r = *flown;
   nlohmann::json trace = nlohmann::json::array();
   for (const auto& point : r.trace) {
@@ -56,8 +94,9 @@ int fly_trajectory(const GlobalOptions& g, const FlyOptions& o, vehicle::Vehicle
   }
   const bool truth = r.truth_tracking.samples > 0;
   const auto or_null = [&](double v) { return truth ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  return finish(g, "trajectory", r.ok(), r.text(),
-                {{"state", vehicle::to_string(r.state)},
+  return say_report(finish(g, "trajectory", r.ok(), r.text(),
+                {{"report", written ? report_json(*written) : nlohmann::json(nullptr)},
+                 {"state", vehicle::to_string(r.state)},
                  {"mode", vehicle::to_string(r.mode)},
                  {"rms_m", r.tracking.rms_m},
                  {"max_m", r.tracking.max_m},
@@ -65,7 +104,7 @@ int fly_trajectory(const GlobalOptions& g, const FlyOptions& o, vehicle::Vehicle
                  {"truth_rms_m", or_null(r.truth_tracking.rms_m)},
                  {"truth_max_m", or_null(r.truth_tracking.max_m)},
                  {"truth_samples", r.truth_tracking.samples},
-                 {"trace", trace}});
+                 {"trace", trace}}));
 }
 
 /// What an action's failure says: "Takeoff temporarily rejected: ...", or the missing answer.
@@ -158,6 +197,12 @@ void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       ->transform(CLI::CheckedTransformer(std::map<std::string, vehicle::StickMode>{{"velocity", vehicle::StickMode::Velocity},
                                                                                   {"attitude", vehicle::StickMode::Attitude}}))
       ->default_str("velocity");
+  traj->add_option("--record", o->record_path, "Save every frame read and sent, and the pilot's setpoints, to a .tlog")
+      ->type_name("FILE.tlog");
+  traj->add_option("--report", o->report_path,
+                   "At the end, draw the recording as an HTML page (hitl report; docs/report.md); without --record, "
+                   "records to FILE with .tlog")
+      ->type_name("FILE.html");
 }
 
 }  // namespace hitl::cli

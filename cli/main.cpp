@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   add_doctor_command(app, options, state);
   add_bridge_command(app, options, state);
   add_demo_command(app, options, state);
+  add_report_command(app, options, state);
   add_completion_command(app, options, state);
   add_reference_command(app, options, state);
   add_number_checks(app);  // every number option: finite, of sane size (cli/number_check.h)

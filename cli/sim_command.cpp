@@ -12,6 +12,7 @@
 #include "cli/number_check.h"
 #include "cli/parse_errors.h"
 #include "cli/session_dashboard.h"
+#include "cli/report_output.h"
 #include "cli/sim_output.h"
 #include "engine/faults/scenario.h"
 #include "engine/hil/session.h"
@@ -40,7 +41,15 @@ struct SimOptions {
   int compid = hil::kSimulatorComponentId;
   std::vector<std::string> fault_specs;  ///< --fault NAME[:ARGS][@T[+DUR]], repeatable
   std::string scenario_file;             ///< --scenario FILE.json
+  std::string report_path;               ///< --report FILE.html: the recording drawn at the end (hitl report)
 };
+
+/// "flight.html" -> "flight.tlog": where --report records when --record is not given.
+std::string recording_for_report(const std::string& report_path) {
+  const std::string ext = ".html";
+  const bool html = report_path.size() > ext.size() && report_path.compare(report_path.size() - ext.size(), ext.size(), ext) == 0;
+  return (html ? report_path.substr(0, report_path.size() - ext.size()) : report_path) + ".tlog";
+}
 
 /// --fault and --scenario into the session's faults (docs/faults.md); false after saying what is wrong.
 bool read_faults(const std::string& cmd, const SimOptions& opt, std::vector<faults::FaultSpec>& out) {
@@ -145,6 +154,10 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     cfg.vio_port = tunnel->local_endpoint(adb::Channel::Vio).port();
   }
 
+  if (!opt.report_path.empty() && cfg.record_path.empty()) {
+    cfg.record_path = recording_for_report(opt.report_path);
+    log_info(global, "hitl sim: --report: recording to " + cfg.record_path);
+  }
   auto session = hil::Session::create(cfg);
   if (!session) {
     log_error(cmd, session.error().message);
@@ -176,15 +189,26 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     }
     return exit_code(end.error());
   }
+  // --report: drawn before the summary; its path printed last.
+  std::optional<report::ReportResult> written;
+  bool report_failed = false;
+  if (!opt.report_path.empty()) {
+    auto r = write_report_and_say(global, cmd, cfg.record_path, opt.report_path);
+    if (r) written = *r;
+    else report_failed = true;
+  }
   if (global.json) {
     auto j = snapshot_json(snap, true);
     j["end"] = end_reason_name(*end);
     if (tunnel) j["adb"] = adb_tunnel_json(*tunnel);
+    if (!opt.report_path.empty()) j["report"] = written ? report_json(*written) : nlohmann::json(nullptr);
     print_json_line(j);
   } else {
     print_summary(snap, end_reason_name(*end));
     if (tunnel) std::printf("%s\n", adb_tunnel_line(*tunnel).c_str());
+    if (written) std::printf("%s\n", written->html_path.c_str());
   }
+  std::fflush(stdout);
   if (!snap.record_error.empty()) log_error(cmd, "--record: " + snap.record_error + "; the recording is incomplete");
   // Every send refused: the session ran, but nothing it simulated reached anyone.
   uint64_t delivered = 0;
@@ -195,7 +219,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     return kExitFailed;
   }
   const bool failed = *end == hil::Session::EndReason::FlightStackGone || *end == hil::Session::EndReason::TrajectoryFailed ||
-                      !snap.record_error.empty();
+                      !snap.record_error.empty() || report_failed;
   return failed ? kExitFailed : kExitOk;
 }
 
@@ -305,6 +329,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                       ", estimator MOCAP), Hz; 0: none")
       ->capture_default_str()->check(non_negative_number())->group(route);
   sub->add_option("--record", c.record_path, "Save everything sent and received to a .tlog")->type_name("FILE.tlog")->group(route);
+  sub->add_option("--report", opt->report_path,
+                  "At the end, draw the recording as an HTML page (hitl report; docs/report.md); without --record, "
+                  "records to FILE with .tlog")
+      ->type_name("FILE.html")->group(route);
   // Through adb the board's ports are the relay's; an address for them would be ignored.
   for (const char* adb_name : {"--adb", "--adb-serial"})
     for (const char* other : {"--target-ip", "--hil-port", "--vio-ip", "--vio-port", "--px4-sitl"})

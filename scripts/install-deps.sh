@@ -10,6 +10,7 @@ packages=(
   libcli11-dev libeigen3-dev libsimbody-dev libncurses-dev nlohmann-json3-dev
   libpugixml-dev libgeographiclib-dev libedit-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  gnuplot-nox
 )
 if [ "${1:-}" = "--test" ]; then
   # Tests also use: clang + its sanitizer/fuzzer runtime (libFuzzer), node + npm (node-mavlink conformance),
@@ -21,6 +22,8 @@ if [ "${1:-}" = "--test" ]; then
   # groff-base, man-db and mandoc render and lint the man page, dpkg-dev's dpkg-shlibdeps computes
   # the package's Depends (file finds the binaries for it).
   packages+=(zsh fish groff-base man-db mandoc dpkg-dev)
+  # hitl report's page rendered in headless Chromium (tests/cli/report_e2e_test.cpp).
+  packages+=(chromium)
   command -v node >/dev/null 2>&1 || packages+=(nodejs)
   command -v npm >/dev/null 2>&1 || packages+=(npm)
 fi

@@ -25,5 +25,8 @@ inline constexpr std::string_view kStatusActuatorRateName = "sim_act_hz";  ///< 
 inline constexpr std::string_view kStatusActuatorFlagsName = "sim_act_fl"; ///< INT: the last one's flags (-1: none yet)
 inline constexpr std::string_view kStatusActuatorArmedName = "sim_act_ar"; ///< INT: the last one's MAV_MODE_FLAG_SAFETY_ARMED (0/1; -1: none yet)
 
+/// NAMED_VALUE_FLOAT in a recording (hitl sim -t --record, engine/hil/flight_record.h): the trajectory
+/// pilot's position error at each scored step, metres; the session's tracking RMS/max are of these.
+inline constexpr std::string_view kTrackingErrorName = "trk_err";
 
 }  // namespace hitl

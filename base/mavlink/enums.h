@@ -93,6 +93,7 @@ inline constexpr uint8_t kMavParamTypeReal32 = 9;
 
 /// Component ids hitl uses for itself.
 inline constexpr uint8_t kCompIdMissionPlanner = 190;  ///< MAV_COMP_ID_MISSIONPLANNER: what GCS tools use
+inline constexpr uint8_t kCompIdPathPlanner = 195;     ///< MAV_COMP_ID_PATHPLANNER: the trajectory pilot in a recording
 inline constexpr uint8_t kGcsSystemId = 255;           ///< the system id ground stations use
 
 }  // namespace hitl::mavlink

@@ -100,24 +100,23 @@ void ClientServices::serve(EventSink& events) {
 template <class M>
 void ClientServices::broadcast_own(const M& message) {
   mavlink::FrameBuffer buf;
-  if (const std::size_t n = own_encoder_.encode(message, buf)) clients_->broadcast({buf.data(), n});
+  const std::size_t n = own_encoder_.encode(message, buf);
+  if (n == 0) return;
+  recording_.record({buf.data(), n});
+  if (clients_) clients_->broadcast({buf.data(), n});
 }
 
 void ClientServices::announce(Severity severity, std::string_view text) {
   mavlink::msg::Statustext st;
   st.severity = static_cast<uint8_t>(mavlink::mav_severity(severity));
   mavlink::set_text(st.text, text);
-  mavlink::FrameBuffer buf;
-  const std::size_t n = own_encoder_.encode(st, buf);
-  if (n == 0) return;
-  recording_.record({buf.data(), n});
-  if (clients_) clients_->broadcast({buf.data(), n});
+  broadcast_own(st);
 }
 
 /// HEARTBEAT from the simulator's sysid (STANDBY while paused) and NAMED_VALUE_* "sim_rtf" (recent
 /// real-time factor), "sim_late" (late ticks), "sim_pause" (0/1), then what hitl doctor reads.
 void ClientServices::send_status(double now_s, double start_wall_s, const SessionStatus& status) {
-  if (!clients_ || now_s < next_status_wall_s_) return;
+  if ((!clients_ && !recording_.active()) || now_s < next_status_wall_s_) return;
   next_status_wall_s_ = now_s + 1.0;
   broadcast_own(mavlink::simulator_heartbeat(status.paused ? mavlink::MavState::Standby : mavlink::MavState::Active));
   const auto boot_ms = static_cast<uint32_t>((now_s - start_wall_s) * 1000.0);
@@ -166,7 +165,7 @@ void ClientServices::send_doctor_status(uint32_t boot_ms, const SessionStatus& s
 }
 
 void ClientServices::send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s) {
-  if (!clients_ || !(config_.truth_rate_hz > 0) || sim_s + 1e-9 < next_truth_s_) return;
+  if ((!clients_ && !recording_.active()) || !(config_.truth_rate_hz > 0) || sim_s + 1e-9 < next_truth_s_) return;
   ++truth_k_;
   next_truth_s_ = static_cast<double>(truth_k_) / config_.truth_rate_hz;
   auto odometry = make_odometry(truth, time_usec);

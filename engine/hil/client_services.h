@@ -47,13 +47,15 @@ class ClientServices {
   /// Sends what the step queued for clients and says once when a bound was hit.
   void serve(EventSink& events);
 
+  /// The session's own frames below (status, truth, announcements) go to the clients and into the
+  /// recording, so that a recording holds the truth and the session's status (docs/report.md).
   /// Once a second of wall time: HEARTBEAT (STANDBY while paused) and the NAMED_VALUE_* status.
   void send_status(double now_s, double start_wall_s, const SessionStatus& status);
   /// A STATUSTEXT from the simulator's identity (a fault started or ended): to every client, where
   /// a ground station shows it, and into the recording, so that a recording says what was injected
   /// when. Texts longer than STATUSTEXT's 50 characters are cut.
   void announce(Severity severity, std::string_view text);
-  /// Truth to clients when due at `sim_s`.
+  /// Truth (ODOMETRY, estimator MOCAP) to clients and the recording when due at `sim_s`.
   void send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s);
   /// ODOMETRY to the VIO server when due at `sim_s`; true when one was sent (or refused).
   /// `lost` (vio-loss): the schedule moves on but nothing is sent.

@@ -23,6 +23,8 @@ class Recording {
   void flush() {
     if (writer_) writer_->flush();
   }
+  /// Recording at all (--record given).
+  bool active() const { return writer_.has_value(); }
   /// The failure in words, once (empty when there is nothing new to say).
   std::string take_failure() {
     if (!writer_ || writer_->ok() || warned_) return {};

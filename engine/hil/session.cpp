@@ -53,6 +53,10 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     if (!w) return w.error();
     s.recording = Recording(std::move(w.value()));
   }
+  if (s.recording.active() && s.pilot) {
+    Recording* recording = &s.recording;
+    s.pilot_record.emplace([recording](std::span<const uint8_t> frame) { recording->record(frame); }, config.sysid, config.protocol);
+  }
   s.pacer.emplace(config.world.physics.step_s, config.speed);  // one step of simulated time per tick
   s.paths.emplace(config);
   s.fault_schedule = faults::FaultSchedule(config.faults);

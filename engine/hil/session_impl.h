@@ -12,6 +12,7 @@
 #include "engine/hil/pacer.h"
 #include "engine/hil/pause_clock.h"
 #include "engine/hil/recording.h"
+#include "engine/vehicle/pilot_record.h"
 #include "engine/hil/session.h"
 #include "engine/hil/stack_link.h"
 #include "engine/hil/traffic.h"
@@ -34,6 +35,7 @@ struct Session::Impl {
   model::TouchdownMonitor touchdowns;
   Traffic traffic;
   Recording recording;
+  std::optional<vehicle::PilotRecord> pilot_record;  ///< -t with --record: the pilot's setpoints, errors and states
   PauseClock clock;
   std::unique_ptr<StackLink> stack;         ///< the board or PX4 SITL, lockstep
   std::unique_ptr<ClientServices> services;  ///< client port, status, truth, VIO

@@ -110,6 +110,10 @@ void Session::Impl::fly_pilot(const model::VehicleState& state, EventSink& event
                                  {state.v_ENU_m_s.x(), state.v_ENU_m_s.y(), state.v_ENU_m_s.z()},
                                  frames::yaw_ENU_rad(state.q_FLU_to_ENU)};
   auto out = pilot->step(time_offset_s + state.time_s, truth, truth);
+  if (pilot_record && out.reference)
+    pilot_record->setpoint(static_cast<uint32_t>(mavlink::wire::s_to_us(sim_time_s()) / 1000), *out.reference, out.tracking_error_m);
+  if (pilot_record && out.event)
+    pilot_record->note(pilot->state() == vehicle::PilotState::Failed ? Severity::Error : Severity::Info, *out.event);
   mavlink::FrameBuffer buf;
   for (const auto& c : out.commands) stack->forward({buf.data(), pilot_encoder.encode(c, buf)});
   if (out.rc) stack->forward({buf.data(), pilot_encoder.encode(*out.rc, buf)});

@@ -55,6 +55,8 @@ PilotOutput TrajectoryFlight::step(double t_s, const PilotPose& pose, const std:
     pilot_.observe_truth(flight_t_s, *truth_from_start);
   }
   auto out = pilot_.step(flight_t_s, from_start);
+  if (out.reference)
+    for (std::size_t k = 0; k < 3; ++k) out.reference->p_ENU_m[k] += origin_->p_ENU_m[k];  // back to the pose's frame
   if (keep_trace_ && pilot_.state() == PilotState::Trajectory)
     trace_.push_back({flight_t_s, from_start.p_ENU_m,
                       truth_from_start ? std::optional(truth_from_start->p_ENU_m) : std::nullopt});
@@ -114,6 +116,11 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
     });
   }
   std::optional<TrajectoryFlight> flight;
+  std::optional<PilotRecord> record;
+  if (options.record) {
+    link.record_frames(options.record);
+    record.emplace(options.record, options.record_sysid);
+  }
   auto on_frame = [&](const mavlink::Frame& f) {
     if (f.is<msg::GlobalPositionInt>() && !home_amsl_m) {
       const auto p = f.as<msg::GlobalPositionInt>();
@@ -136,7 +143,10 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
     on_frame(f);
     return home_amsl_m && have_position && have_yaw;
   });
-  const auto forget_truth = [&] { link.on_other_systems({}); };  // the handler refers to this frame's locals
+  const auto forget_truth = [&] {  // the handlers refer to this frame's locals
+    link.on_other_systems({});
+    link.record_frames({});
+  };
   if (!home_amsl_m || !have_position) {
     forget_truth();
     if (stopped()) return FlightResult{PilotState::Init, "", true, options.mode, {}, {}, {}};
@@ -150,6 +160,8 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
     for (const auto& c : out.commands) link.send(c);
     if (out.rc) link.send(*out.rc);
     if (out.event) note(*out.event);
+    if (record && out.reference) record->setpoint(static_cast<uint32_t>(t_s * 1000), *out.reference, out.tracking_error_m);
+    if (record && out.event) record->note(flight->state() == PilotState::Failed ? Severity::Error : Severity::Info, *out.event);
   }
   forget_truth();
   auto result = flight->result();

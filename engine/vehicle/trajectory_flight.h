@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "base/common/expected.h"
+#include "base/mavlink/enums.h"
+#include "engine/vehicle/pilot_record.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/vehicle/trajectory_pilot.h"
 #include "engine/vehicle/vehicle_link.h"
@@ -54,6 +56,7 @@ class TrajectoryFlight {
   /// One tick at `t_s` (any clock) on `pose` (world ENU, any origin), scored also against `truth`
   /// (world ENU, its own origin) when given; what to send back. The first tick fixes the start of
   /// the clock and the pose's origin; the truth's origin is its first sample before the takeoff.
+  /// The output's reference is in the pose's frame (world ENU).
   PilotOutput step(double t_s, const PilotPose& pose, const std::optional<PilotPose>& truth = std::nullopt);
 
   PilotState state() const { return pilot_.state(); }
@@ -79,6 +82,10 @@ struct FlyTrajectoryOptions {
   std::optional<uint8_t> truth_sysid;  ///< a simulator whose ODOMETRY (MOCAP) is ground truth
   bool keep_trace = false;
   const std::atomic<bool>* stop = nullptr;  ///< when it turns true the flight ends (result.stopped)
+  /// A recording (hitl fly trajectory --report): every frame read and sent, and the pilot's
+  /// setpoints, errors and states (pilot_record.h) as `record_sysid`.
+  PilotRecord::Sink record;
+  uint8_t record_sysid = mavlink::kGcsSystemId;
 };
 
 /// What the flight says as it goes: a state change ("trajectory: TAKEOFF (armed)") or a note

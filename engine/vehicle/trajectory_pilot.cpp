@@ -217,10 +217,12 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
     case PilotState::Hold: {
       const double tt = t_s - trajectory_start_s_;
       const auto ref = trajectory_.at(tt);
+      out.reference = ref;
       if (state_ == PilotState::Trajectory) {
         double err_sq = 0;
         for (std::size_t k = 0; k < 3; ++k) err_sq += (ref.p_ENU_m[k] - pose.p_ENU_m[k]) * (ref.p_ENU_m[k] - pose.p_ENU_m[k]);
-        tracking_.add(std::sqrt(err_sq));
+        out.tracking_error_m = std::sqrt(err_sq);
+        tracking_.add(*out.tracking_error_m);
         if (tt >= trajectory_.duration_s()) enter(PilotState::Hold, t_s, out, "trajectory flown");
       } else if (in_state_s >= config_.hold_s) {
         enter(PilotState::Land, t_s, out);

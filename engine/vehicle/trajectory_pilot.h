@@ -70,6 +70,10 @@ struct PilotOutput {
   std::vector<mavlink::msg::CommandLong> commands;
   std::optional<mavlink::msg::RcChannelsOverride> rc;
   std::optional<std::string> event;  ///< a state change, in words
+  /// TRAJECTORY and HOLD: the reference flown this step (ENU from the start; TrajectoryFlight
+  /// gives it in the pose's own frame); in TRAJECTORY also the error scored into tracking().
+  std::optional<TrajectoryReference> reference;
+  std::optional<double> tracking_error_m;
 };
 
 struct TrackingStats {

@@ -64,6 +64,7 @@ void VehicleLink::heartbeat() {
 
 void VehicleLink::send_bytes(std::span<const uint8_t> bytes) {
   if (!link_->connected()) return;  // a TCP server that went away: nothing more to send
+  if (record_) record_(bytes);
   // The first refusal, errno and the likely fix; a stream that broke is closed, not refused.
   if (auto st = link_->send(bytes); !st && link_->connected() && send_error_.empty()) send_error_ = st.error().message;
 }
@@ -72,7 +73,9 @@ bool VehicleLink::wait(double timeout_s, const FrameHandler& handler) {
   const double end = monotonic_s() + timeout_s;
   bool done = false;
   auto on_frame = [&](const mavlink::Frame& f) {
-    if (done || f.desc == nullptr) return;
+    if (done) return;
+    if (record_) record_(f.bytes());
+    if (f.desc == nullptr) return;
     if (sysid_ != 0 && f.sysid != sysid_) {
       if (other_systems_) other_systems_(f);
       return;

@@ -61,6 +61,8 @@ class VehicleLink {
   /// Frames from other systems seen during wait() (e.g. the simulator's ground truth, sysid 250,
   /// when connected through a session); none by default.
   void on_other_systems(std::function<void(const mavlink::Frame&)> handler) { other_systems_ = std::move(handler); }
+  /// Every frame read (any system) and sent from now on, as its bytes (a recording); none by default.
+  void record_frames(std::function<void(std::span<const uint8_t>)> sink) { record_ = std::move(sink); }
 
   uint8_t target_sysid() const { return sysid_; }
   uint8_t target_compid() const { return compid_; }
@@ -84,6 +86,7 @@ class VehicleLink {
   uint8_t compid_ = 0;
   double last_heartbeat_s_ = -1e9;
   std::function<void(const mavlink::Frame&)> other_systems_;
+  std::function<void(std::span<const uint8_t>)> record_;
 };
 
 }  // namespace hitl::vehicle

@@ -1,0 +1,324 @@
+#include "engine/report/flight_log.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "base/contract/data_rates.h"
+#include "base/contract/session_status.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
+#include "base/mavlink/messages.h"
+#include "base/mavlink/severity.h"
+#include "base/mavlink/text_field.h"
+#include "engine/frames/frames.h"
+#include "engine/mavlink/tlog.h"
+#include "engine/telemetry/px4_mode.h"
+
+namespace hitl::report {
+namespace msg = mavlink::msg;
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
+constexpr uint8_t kMavAutopilotInvalid = 8;
+constexpr uint8_t kMavTypeGcs = 6;
+constexpr double kTimingWindow_s = 1.0;
+
+/// Wall time (tlog timestamps) to the simulator's clock: HIL_SENSOR's (wall, time_usec) pairs,
+/// interpolated between, 1:1 beyond the ends. Without pairs: seconds since the first record.
+class Clock {
+ public:
+  void add(uint64_t wall_us, uint64_t sim_us) {
+    if (!anchors_.empty() && (wall_us < anchors_.back().first || sim_us < anchors_.back().second)) return;  // a reset
+    anchors_.emplace_back(wall_us, sim_us);
+  }
+  void set_first_wall(uint64_t wall_us) { first_wall_us_ = wall_us; }
+  bool simulated() const { return !anchors_.empty(); }
+  double t_s(uint64_t wall_us) const {
+    if (anchors_.empty()) return static_cast<double>(static_cast<int64_t>(wall_us - first_wall_us_)) * 1e-6;
+    auto it = std::upper_bound(anchors_.begin(), anchors_.end(), wall_us,
+                               [](uint64_t w, const std::pair<uint64_t, uint64_t>& a) { return w < a.first; });
+    if (it == anchors_.begin()) return (static_cast<double>(it->second) - static_cast<double>(it->first - wall_us)) * 1e-6;
+    const auto& a = *(it - 1);
+    if (it == anchors_.end() || it->first == a.first)
+      return (static_cast<double>(a.second) + static_cast<double>(wall_us - a.first)) * 1e-6;
+    const double f = static_cast<double>(wall_us - a.first) / static_cast<double>(it->first - a.first);
+    return (static_cast<double>(a.second) + f * static_cast<double>(it->second - a.second)) * 1e-6;
+  }
+
+ private:
+  std::vector<std::pair<uint64_t, uint64_t>> anchors_;
+  uint64_t first_wall_us_ = 0;
+};
+
+struct Arrivals {
+  std::string name;
+  std::optional<double> expected_hz;
+  std::vector<double> t_s;
+  std::vector<uint64_t> wall_us;
+};
+
+PathTiming timing_of(const Arrivals& a) {
+  PathTiming p;
+  p.name = a.name;
+  p.expected_hz = a.expected_hz;
+  p.count = a.t_s.size();
+  if (a.t_s.size() < 2) return p;
+  const double span_s = a.t_s.back() - a.t_s.front();
+  p.mean_rate_hz = span_s > 0 ? static_cast<double>(a.t_s.size() - 1) / span_s : 0;
+  std::size_t i = 0;
+  for (double w0 = std::floor(a.t_s.front()); w0 < a.t_s.back(); w0 += kTimingWindow_s) {
+    const double w1 = w0 + kTimingWindow_s;
+    const std::size_t start = i;
+    while (i < a.t_s.size() && a.t_s[i] < w1) ++i;
+    const double length_s = std::min(w1, a.t_s.back()) - std::max(w0, a.t_s.front());
+    if (length_s < 0.5 * kTimingWindow_s) continue;  // a partial window at either end says little
+    p.rate_hz.t_s.push_back(w0 + 0.5 * kTimingWindow_s);
+    p.rate_hz.value.push_back(static_cast<double>(i - start) / length_s);
+    double sum = 0, sum_sq = 0;
+    std::size_t n = 0;
+    for (std::size_t k = start + 1; k < i; ++k) {
+      const double d_ms = static_cast<double>(a.wall_us[k] - a.wall_us[k - 1]) * 1e-3;
+      sum += d_ms;
+      sum_sq += d_ms * d_ms;
+      ++n;
+    }
+    if (n >= 2) {
+      const double mean = sum / static_cast<double>(n);
+      p.jitter_ms.t_s.push_back(w0 + 0.5 * kTimingWindow_s);
+      p.jitter_ms.value.push_back(std::sqrt(std::max(0.0, sum_sq / static_cast<double>(n) - mean * mean)));
+    }
+  }
+  return p;
+}
+
+void add_point(Track& track, double t_s, double n, double e, double d) {
+  track.t_s.push_back(t_s);
+  track.north_m.push_back(n);
+  track.east_m.push_back(e);
+  track.down_m.push_back(d);
+}
+
+void add_attitude(AttitudeTrack& track, double t_s, double roll_rad, double pitch_rad, double yaw_rad) {
+  track.t_s.push_back(t_s);
+  track.roll_deg.push_back(roll_rad * kRadToDeg);
+  track.pitch_deg.push_back(pitch_rad * kRadToDeg);
+  track.yaw_deg.push_back(yaw_rad * kRadToDeg);
+}
+
+void add(Series& s, double t_s, double v) {
+  s.t_s.push_back(t_s);
+  s.value.push_back(v);
+}
+
+/// The vehicle's HEARTBEATs as events: armed, disarmed, each mode change.
+struct VehicleState {
+  std::optional<bool> armed;
+  std::optional<std::string> mode;
+};
+
+std::string source_name(const mavlink::Frame& f, uint8_t sim_id) {
+  if (f.compid == mavlink::kCompIdPathPlanner) return "pilot";
+  if (f.sysid == sim_id) return "simulator";
+  return "system " + std::to_string(f.sysid);
+}
+
+}  // namespace
+
+Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& limits) {
+  const auto messages = mavlink::MessageSet::compiled();
+  // Pass 1: the simulator's clock.
+  Clock clock;
+  std::optional<uint8_t> sim_sysid;
+  {
+    auto reader = mavlink::TlogReader::open(path);
+    if (!reader) return reader.error();
+    mavlink::FrameParser parser(messages);
+    mavlink::TlogRecord r;
+    bool first = true;
+    for (uint64_t n = 0; n < limits.max_records && reader->next(r); ++n) {
+      if (first) clock.set_first_wall(r.time_unix_us);
+      first = false;
+      parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
+        if (!f.is<msg::HilSensor>()) return;
+        if (!sim_sysid) sim_sysid = f.sysid;
+        if (f.sysid == *sim_sysid) clock.add(r.time_unix_us, f.as<msg::HilSensor>().time_usec);
+      });
+    }
+  }
+  // The simulator: who sent HIL_SENSOR; without one (a client's recording, hitl fly trajectory
+  // --report through a session), hitl's simulator id, whose truth and status reach clients.
+  const uint8_t sim_id = sim_sysid.value_or(kSimulatorSystemId);
+  // Pass 2: the series.
+  auto reader = mavlink::TlogReader::open(path);
+  if (!reader) return reader.error();
+  mavlink::FrameParser parser(messages);
+  FlightLog log;
+  log.path = path;
+  log.simulated_time = clock.simulated();
+  Arrivals sensor{"HIL_SENSOR", 1.0 / kStepPeriod_s, {}, {}};
+  Arrivals gps{"HIL_GPS", std::nullopt, {}, {}};
+  Arrivals vio{"ODOMETRY (VIO)", kVioRate_hz, {}, {}};
+  Arrivals actuators{"HIL_ACTUATOR_CONTROLS", std::nullopt, {}, {}};
+  Track vehicle_setpoint;
+  std::map<uint8_t, VehicleState> vehicles;
+  uint64_t events_dropped = 0;
+  auto event = [&](double t_s, Severity severity, std::string source, std::string text) {
+    if (log.events.size() >= limits.max_events) {
+      ++events_dropped;
+      return;
+    }
+    log.events.push_back({t_s, severity, std::move(source), std::move(text)});
+  };
+  auto arrive = [](Arrivals& a, double t_s, uint64_t wall_us) {
+    a.t_s.push_back(t_s);
+    a.wall_us.push_back(wall_us);
+  };
+  double tracking_sum_sq = 0;
+  mavlink::TlogRecord r;
+  std::optional<uint64_t> first_wall_us, last_wall_us;
+  std::optional<double> first_t_s, last_t_s;
+  bool cut = false;
+  for (;;) {
+    if (log.records >= limits.max_records) {
+      cut = reader->next(r);
+      break;
+    }
+    if (!reader->next(r)) break;
+    ++log.records;
+    const uint64_t wall_us = r.time_unix_us;
+    const double t_s = clock.t_s(wall_us);
+    if (!first_wall_us) first_wall_us = wall_us, first_t_s = t_s;
+    last_wall_us = wall_us;
+    last_t_s = t_s;
+    parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
+      if (f.desc == nullptr) return;  // an id nobody described, its checksum unchecked: counted by the parser
+      ++log.frames;
+      const bool from_sim = f.sysid == sim_id;
+      const bool from_pilot = f.compid == mavlink::kCompIdPathPlanner;  // pilot_record.h: under sim -t or fly trajectory
+      switch (f.msgid) {
+        case msg::HilSensor::kId:
+          if (from_sim) arrive(sensor, t_s, wall_us);
+          break;
+        case msg::HilGps::kId:
+          if (from_sim) arrive(gps, t_s, wall_us);
+          break;
+        case msg::Odometry::kId: {
+          const auto o = f.as<msg::Odometry>();
+          if (from_sim && f.compid == kVioComponentId) arrive(vio, t_s, wall_us);
+          if (from_sim && o.estimator_type == static_cast<uint8_t>(mavlink::MavEstimatorType::Mocap)) {
+            add_point(log.truth, t_s, o.x, o.y, o.z);
+            const Eigen::Quaterniond q(o.q[0], o.q[1], o.q[2], o.q[3]);
+            const auto e = frames::euler_from(q);
+            add_attitude(log.truth_attitude, t_s, e.roll_rad, e.pitch_rad, e.yaw_rad);
+          }
+          break;
+        }
+        case msg::PositionTargetLocalNed::kId: {
+          const auto sp = f.as<msg::PositionTargetLocalNed>();
+          add_point(from_pilot ? log.setpoint : vehicle_setpoint, t_s, sp.x, sp.y, sp.z);
+          break;
+        }
+        case msg::NamedValueFloat::kId: {
+          const auto nv = f.as<msg::NamedValueFloat>();
+          if (from_pilot && mavlink::text_of(nv.name) == kTrackingErrorName) {
+            add(log.tracking_error_m, t_s, nv.value);
+            tracking_sum_sq += static_cast<double>(nv.value) * nv.value;
+          }
+          break;
+        }
+        case msg::NamedValueInt::kId: {
+          const auto nv = f.as<msg::NamedValueInt>();
+          if (!from_sim) break;
+          const auto name = mavlink::text_of(nv.name);
+          if (name == kStatusLateName) log.late_ticks = nv.value;
+          if (name == kStatusLockstepName) log.lockstep = nv.value != 0;
+          break;
+        }
+        case msg::LocalPositionNed::kId:
+          if (!from_sim) {
+            const auto p = f.as<msg::LocalPositionNed>();
+            add_point(log.estimate, t_s, p.x, p.y, p.z);
+          }
+          break;
+        case msg::Attitude::kId:
+          if (!from_sim) {
+            const auto a = f.as<msg::Attitude>();
+            add_attitude(log.estimate_attitude, t_s, a.roll, a.pitch, a.yaw);
+          }
+          break;
+        case msg::HilActuatorControls::kId: {
+          if (from_sim) break;
+          arrive(actuators, t_s, wall_us);
+          const auto a = f.as<msg::HilActuatorControls>();
+          for (std::size_t k = 0; k < log.motors.size(); ++k) add(log.motors[k], t_s, a.controls[k]);
+          break;
+        }
+        case msg::EstimatorStatus::kId: {
+          if (from_sim) break;
+          const auto e = f.as<msg::EstimatorStatus>();
+          const std::array<float, 6> ratios = {e.vel_ratio, e.pos_horiz_ratio, e.pos_vert_ratio, e.mag_ratio, e.hagl_ratio, e.tas_ratio};
+          for (std::size_t k = 0; k < ratios.size(); ++k) add(log.ekf_ratios[k], t_s, ratios[k]);
+          break;
+        }
+        case msg::Statustext::kId: {
+          const auto st = f.as<msg::Statustext>();
+          event(t_s, mavlink::severity_of(st.severity), source_name(f, sim_id), mavlink::text_of(st.text));
+          break;
+        }
+        case msg::Heartbeat::kId: {
+          const auto hb = f.as<msg::Heartbeat>();
+          if (from_sim || hb.autopilot == kMavAutopilotInvalid || hb.type == kMavTypeGcs) break;
+          auto& v = vehicles[f.sysid];
+          const bool armed = (hb.base_mode & mavlink::mode_flag::kSafetyArmed) != 0;
+          const auto mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
+          if (v.armed != armed) event(t_s, Severity::Info, source_name(f, sim_id), armed ? "armed" : "disarmed");
+          if (v.mode != mode) event(t_s, Severity::Info, source_name(f, sim_id), "mode " + mode);
+          v.armed = armed;
+          v.mode = mode;
+          break;
+        }
+        default: break;
+      }
+    });
+  }
+  if (log.frames == 0) return Error::input("'" + path + "' holds no MAVLink frame of a known message (is it a .tlog?)");
+  log.skipped_bytes = reader->stats().skipped_bytes;
+  log.parse_errors = parser.stats().crc_errors + parser.stats().unknown_ids;
+  log.start_s = *first_t_s;
+  log.duration_s = *last_t_s - *first_t_s;
+  log.wall_duration_s = static_cast<double>(*last_wall_us - *first_wall_us) * 1e-6;
+  if (log.setpoint.size() == 0) log.setpoint = std::move(vehicle_setpoint);
+  if (log.tracking_error_m.size() > 0) {
+    TrackingSummary s;
+    s.samples = log.tracking_error_m.size();
+    s.rms_m = std::sqrt(tracking_sum_sq / static_cast<double>(s.samples));
+    s.max_m = *std::max_element(log.tracking_error_m.value.begin(), log.tracking_error_m.value.end());
+    log.tracking = s;
+  }
+  if (log.lockstep) actuators.expected_hz = *log.lockstep ? 1.0 / kStepPeriod_s : kActuatorStreamRate_hz;
+  for (const Arrivals* a : {&sensor, &gps, &vio, &actuators})
+    if (!a->t_s.empty()) log.paths.push_back(timing_of(*a));
+  // What this log cannot show, in words.
+  auto lacks = [&](bool missing, const std::string& what) {
+    if (missing) log.missing.push_back(what);
+  };
+  lacks(!log.simulated_time, "the simulator's clock (HIL_SENSOR from a simulator): times are seconds since the first record");
+  lacks(log.truth.size() == 0, "ground truth (ODOMETRY with estimator MOCAP from the simulator; hitl sim --record writes it)");
+  lacks(log.setpoint.size() == 0, "setpoints (POSITION_TARGET_LOCAL_NED; hitl sim -t --record and hitl fly trajectory --report write the pilot's)");
+  lacks(log.tracking_error_m.size() == 0, "the tracking error (NAMED_VALUE_FLOAT trk_err; hitl sim -t --record and hitl fly trajectory --report write it)");
+  lacks(log.estimate.size() == 0, "the vehicle's position estimate (LOCAL_POSITION_NED)");
+  lacks(log.estimate_attitude.size() == 0, "the vehicle's attitude (ATTITUDE)");
+  lacks(log.motors[0].size() == 0, "motor commands (HIL_ACTUATOR_CONTROLS)");
+  lacks(log.ekf_ratios[0].size() == 0, "EKF test ratios (ESTIMATOR_STATUS)");
+  lacks(log.paths.empty(), "the HIL data paths (HIL_SENSOR, HIL_GPS, ODOMETRY, HIL_ACTUATOR_CONTROLS)");
+  lacks(!log.late_ticks, "the session's status (NAMED_VALUE_INT sim_late: late ticks)");
+  lacks(true, "the loop latency (not measured by hitl yet)");
+  if (cut) log.missing.push_back("records after the first " + std::to_string(limits.max_records) + " (the log was cut there)");
+  if (events_dropped > 0) log.missing.push_back(std::to_string(events_dropped) + " events after the first " + std::to_string(limits.max_events));
+  return log;
+}
+
+}  // namespace hitl::report

@@ -1,0 +1,100 @@
+// A recording read back as the series a report draws (docs/report.md): any .tlog, hitl's own or a
+// ground station's. What a plain log lacks is said in words (FlightLog::missing), never guessed.
+//
+// Time: seconds of simulated time when the recording has the simulator's clock (the time_usec of
+// the HIL_SENSOR it sent; every record is placed on it by its tlog timestamp, interpolated between
+// two HIL_SENSOR), otherwise seconds since the first record. Positions are world NED metres.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/common/expected.h"
+#include "base/common/severity.h"
+
+namespace hitl::report {
+
+struct Series {
+  std::vector<double> t_s;
+  std::vector<double> value;
+  std::size_t size() const { return t_s.size(); }
+};
+
+struct Track {
+  std::vector<double> t_s, north_m, east_m, down_m;
+  std::size_t size() const { return t_s.size(); }
+};
+
+struct AttitudeTrack {
+  std::vector<double> t_s, roll_deg, pitch_deg, yaw_deg;
+  std::size_t size() const { return t_s.size(); }
+};
+
+/// One data path's arrivals in 1 s windows of the log's time: rate per second of that time and the
+/// standard deviation of the wall-clock inter-arrival time.
+struct PathTiming {
+  std::string name;                  ///< "HIL_SENSOR", "HIL_GPS", "ODOMETRY (VIO)", "HIL_ACTUATOR_CONTROLS"
+  std::optional<double> expected_hz;  ///< per second of the log's time; nullopt: not known from the recording
+  uint64_t count = 0;
+  double mean_rate_hz = 0;            ///< count over the time between the first and the last
+  Series rate_hz;                     ///< t_s at each window's middle
+  Series jitter_ms;
+};
+
+struct LogEvent {
+  double t_s = 0;
+  Severity severity = Severity::Info;
+  std::string source;  ///< "simulator", "pilot", "vehicle 1"
+  std::string text;
+};
+
+struct TrackingSummary {
+  uint64_t samples = 0;
+  double rms_m = 0;
+  double max_m = 0;
+};
+
+struct FlightLog {
+  std::string path;
+  uint64_t records = 0;         ///< tlog records read
+  uint64_t frames = 0;          ///< MAVLink frames in them
+  uint64_t skipped_bytes = 0;   ///< corruption the reader stepped over
+  uint64_t parse_errors = 0;    ///< frames dropped by the parser (CRC, unknown ids)
+  bool simulated_time = false;  ///< t_s is the simulator's clock
+  double start_s = 0;           ///< the first record's t_s
+  double duration_s = 0;        ///< first to last record, in t_s
+  double wall_duration_s = 0;   ///< first to last record, tlog timestamps
+
+  Track setpoint;               ///< the trajectory pilot's reference (POSITION_TARGET_LOCAL_NED from MAV_COMP_ID_PATHPLANNER), else the vehicle's
+  Track truth;                  ///< the simulator's ground truth (ODOMETRY, estimator MOCAP, from the system that sent
+                                ///< HIL_SENSOR, or from hitl's simulator id 250 in a log without HIL_SENSOR)
+  Track estimate;               ///< the vehicle's LOCAL_POSITION_NED
+  AttitudeTrack truth_attitude;
+  AttitudeTrack estimate_attitude;  ///< ATTITUDE
+  Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err from the pilot: what the tracking RMS/max are of
+  std::optional<TrackingSummary> tracking;
+  std::array<Series, 4> motors;  ///< HIL_ACTUATOR_CONTROLS controls[0..3]
+  std::array<Series, 6> ekf_ratios;  ///< ESTIMATOR_STATUS, in kEkfRatioNames' order
+  std::vector<PathTiming> paths;
+  std::vector<LogEvent> events;
+  std::optional<int64_t> late_ticks;      ///< the session's last "sim_late"
+  std::optional<bool> lockstep;           ///< the session's "sim_lockst"
+  std::vector<std::string> missing;       ///< what a report cannot draw from this log, in words
+};
+
+inline constexpr std::array<const char*, 6> kEkfRatioNames = {"velocity", "horizontal position", "vertical position",
+                                                              "magnetometer", "height above ground", "airspeed"};
+
+struct ReadLimits {
+  uint64_t max_records = 50'000'000;  ///< a larger log is read this far and said to be cut
+  std::size_t max_events = 2000;       ///< further events are counted, not kept
+};
+
+/// Reads the tlog at `path` (two passes: the simulator's clock, then the series). An Error when it
+/// cannot be opened or holds no MAVLink frame at all.
+Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& limits = {});
+
+}  // namespace hitl::report

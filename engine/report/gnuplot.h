@@ -1,0 +1,29 @@
+// Drawing the report's plots with gnuplot (Debian gnuplot-nox), run once per report as a separate
+// process on one script: each plot to an SVG (svg terminal), one group per series (id gnuplot_plot_N,
+// N from 1 in the plot's order) titled with the series' name, so that a reader of the SVG can tell which path is which. docs/report.md says why
+// gnuplot rather than PLplot.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "base/common/expected.h"
+#include "engine/report/plots.h"
+
+namespace hitl::report {
+
+struct GnuplotOptions {
+  int width_px = 960;
+  int height_px = 380;
+  int timeout_ms = 120'000;
+};
+
+/// The gnuplot script that draws `plots` into `dir`/<id>.svg (public for tests).
+std::string gnuplot_script(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers, const std::string& dir,
+                           const GnuplotOptions& options = {});
+
+/// Each plot's SVG text, in order. An Error when gnuplot is not installed, fails or takes too long.
+Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers,
+                                               const GnuplotOptions& options = {});
+
+}  // namespace hitl::report

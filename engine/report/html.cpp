@@ -1,0 +1,99 @@
+#include "engine/report/html.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <sstream>
+
+namespace hitl::report {
+namespace {
+
+std::string fixed(double v, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return text;
+}
+
+/// The SVG document without its XML prolog, to sit inline in HTML.
+std::string inline_svg(const std::string& svg) {
+  const auto start = svg.find("<svg");
+  return start == std::string::npos ? std::string{} : svg.substr(start);
+}
+
+constexpr const char* kStyle = R"(body{font-family:sans-serif;margin:24px auto;padding:0 16px;max-width:1100px;color:#222}
+h1{font-size:22px}h2{font-size:17px;margin-top:28px}table{border-collapse:collapse;font-size:13px}
+td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}th{background:#f3f3f3}
+figure{margin:18px 0;border:1px solid #ddd;padding:6px}figure svg{width:100%;height:auto}
+figcaption{font-size:12px;color:#555}.lacks li{color:#8a4b00}.sev-warning{color:#b35900}.sev-error{color:#c00}
+.legend span{display:inline-block;margin-right:14px;font-size:12px}.swatch{display:inline-block;width:14px;border-top:2px dotted;margin-right:4px;vertical-align:middle}
+)";
+
+}  // namespace
+
+std::string html_escaped(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, const std::vector<std::string>& svgs) {
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>hitl report: " << html_escaped(log.path)
+    << "</title>\n<style>" << kStyle << "</style></head><body>\n";
+  h << "<h1>hitl report: " << html_escaped(log.path) << "</h1>\n";
+  // Summary.
+  h << "<h2>Summary</h2>\n<table id=\"summary\">\n";
+  auto row = [&](const std::string& name, const std::string& value) {
+    h << "<tr><th>" << html_escaped(name) << "</th><td>" << html_escaped(value) << "</td></tr>\n";
+  };
+  row(log.simulated_time ? "simulated time" : "duration", fixed(log.duration_s, 1) + " s");
+  row("wall time", fixed(log.wall_duration_s, 1) + " s");
+  row("records / frames", std::to_string(log.records) + " / " + std::to_string(log.frames));
+  if (log.tracking)
+    row("tracking error against truth", "RMS " + fixed(log.tracking->rms_m, 2) + " m, max " + fixed(log.tracking->max_m, 2) +
+                                            " m (" + std::to_string(log.tracking->samples) + " samples)");
+  for (const auto& p : log.paths)
+    row(p.name + " rate", fixed(p.mean_rate_hz, 0) + " Hz" + (p.expected_hz ? " (expected " + fixed(*p.expected_hz, 0) + " Hz)" : "") +
+                              ", " + std::to_string(p.count) + " messages");
+  if (log.late_ticks) row("late ticks", std::to_string(*log.late_ticks));
+  if (log.lockstep) row("lockstep", *log.lockstep ? "yes" : "no");
+  row("events", std::to_string(log.events.size()));
+  if (log.skipped_bytes > 0 || log.parse_errors > 0)
+    row("damage", std::to_string(log.skipped_bytes) + " bytes skipped, " + std::to_string(log.parse_errors) + " frames rejected");
+  h << "</table>\n";
+  if (!log.missing.empty()) {
+    h << "<h2>What this log lacks</h2>\n<ul class=\"lacks\" id=\"lacks\">\n";
+    for (const auto& m : log.missing) h << "<li>" << html_escaped(m) << "</li>\n";
+    h << "</ul>\n";
+  }
+  // Plots.
+  h << "<h2>Plots</h2>\n<p class=\"legend\">Events on the time axes: <span><i class=\"swatch\" style=\"border-color:#2ca02c\"></i>info</span>"
+       "<span><i class=\"swatch\" style=\"border-color:#1f77b4\"></i>notice</span><span><i class=\"swatch\" "
+       "style=\"border-color:#ff7f0e\"></i>warning</span><span><i class=\"swatch\" style=\"border-color:#d62728\"></i>error</span></p>\n";
+  for (std::size_t i = 0; i < plots.size() && i < svgs.size(); ++i) {
+    nlohmann::json series = nlohmann::json::array();
+    for (const auto& s : plots[i].series) series.push_back({{"title", s.title}, {"points", s.x.size()}, {"samples", s.samples}});
+    h << "<figure id=\"plot-" << plots[i].id << "\" data-series=\"" << html_escaped(series.dump()) << "\">\n"
+      << inline_svg(svgs[i]) << "\n";
+    if (!plots[i].note.empty()) h << "<figcaption>" << html_escaped(plots[i].note) << "</figcaption>\n";
+    h << "</figure>\n";
+  }
+  // Events.
+  h << "<h2>Events</h2>\n<table id=\"events\"><tr><th>t (s)</th><th>from</th><th>severity</th><th>text</th></tr>\n";
+  for (const auto& e : log.events)
+    h << "<tr class=\"sev-" << to_string(e.severity) << "\"><td>" << fixed(e.t_s, 2) << "</td><td>" << html_escaped(e.source)
+      << "</td><td>" << to_string(e.severity) << "</td><td>" << html_escaped(e.text) << "</td></tr>\n";
+  h << "</table>\n</body></html>\n";
+  return h.str();
+}
+
+}  // namespace hitl::report

@@ -1,0 +1,358 @@
+// hitl report through the real binary: the demo's report rendered in headless Chromium (not blank,
+// and each plot's SVG holds the series its figure claims, with as many points as it says, of as
+// many samples as the recording holds); a plain MAVLink peer's log (hitl target recorded by hitl
+// inspect: no simulator, no pilot) gives a report of what it has and says what it lacks.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "base/contract/session_status.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
+#include "base/mavlink/messages.h"
+#include "base/mavlink/text_field.h"
+#include "engine/mavlink/tlog.h"
+#include "tests/support/json_lines.h"
+#include "tests/support/process.h"
+#include "tests/support/tools.h"
+
+namespace hitl {
+namespace {
+using namespace std::chrono_literals;
+namespace msg = mavlink::msg;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string unescaped(std::string text) {
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{{"&quot;", "\""}, {"&lt;", "<"}, {"&gt;", ">"}, {"&amp;", "&"}}) {
+    for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size()) text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+struct SeriesClaim {
+  std::string title;
+  std::size_t points = 0;
+  std::size_t samples = 0;
+  std::size_t drawn = 0;  ///< coordinate pairs in the SVG group of that title, less the key's sample line
+};
+
+/// The text of the SVG group that starts at `at` ("<g id=..."), nested groups included.
+std::string group_at(const std::string& text, std::size_t at) {
+  int depth = 0;
+  std::size_t pos = at;
+  while (pos < text.size()) {
+    const auto open = text.find("<g", pos), close = text.find("</g>", pos);
+    if (close == std::string::npos) return text.substr(at);
+    if (open != std::string::npos && open < close && (text[open + 2] == ' ' || text[open + 2] == '>')) {
+      ++depth;
+      pos = open + 2;
+      continue;
+    }
+    if (open != std::string::npos && open < close) {
+      pos = open + 2;
+      continue;
+    }
+    --depth;
+    pos = close + 4;
+    if (depth == 0) return text.substr(at, pos - at);
+  }
+  return text.substr(at);
+}
+
+/// Coordinate pairs ("12.5,40.25") in the d='...' attributes of `svg`.
+std::size_t coordinate_pairs(const std::string& svg) {
+  std::size_t pairs = 0;
+  for (std::size_t at = 0; (at = svg.find("d='", at)) != std::string::npos;) {
+    const auto end = svg.find('\'', at + 3);
+    for (std::size_t k = at + 3; k < end; ++k) pairs += svg[k] == ',' ? 1 : 0;
+    at = end;
+  }
+  return pairs;
+}
+
+/// Each figure's claims and what its SVG draws: figure id -> series in plot order.
+std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& html) {
+  std::map<std::string, std::vector<SeriesClaim>> out;
+  const std::string open = "<figure id=\"plot-";
+  for (std::size_t at = 0; (at = html.find(open, at)) != std::string::npos;) {
+    const auto id_end = html.find('"', at + open.size());
+    const std::string id = html.substr(at + open.size(), id_end - at - open.size());
+    const auto data = html.find("data-series=\"", id_end) + 13;
+    const auto claims = nlohmann::json::parse(unescaped(html.substr(data, html.find('"', data) - data)));
+    const auto fig_end = html.find("</figure>", at);
+    const std::string fig = html.substr(at, fig_end - at);
+    at = fig_end;
+    auto& series = out[id];
+    for (std::size_t k = 0; k < claims.size(); ++k) {
+      SeriesClaim c{claims[k]["title"], claims[k]["points"], claims[k]["samples"], 0};
+      const auto g = fig.find("<g id=\"gnuplot_plot_" + std::to_string(k + 1) + "\"");
+      if (g == std::string::npos) {
+        c.title = "(no group in the SVG) " + c.title;
+      } else {
+        const std::string group = group_at(fig, g);
+        if (group.find("<text>" + c.title + "</text>") == std::string::npos) c.title = "(another key in the SVG) " + c.title;
+        const std::size_t pairs = coordinate_pairs(group);
+        c.drawn = pairs >= 2 ? pairs - 2 : 0;  // the key's sample line is two points
+      }
+      series.push_back(c);
+    }
+  }
+  return out;
+}
+
+/// Counted straight from the recording with the codec, not with the report's reader.
+struct RecordingCounts {
+  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0;
+};
+
+RecordingCounts count_recording(const std::string& path) {
+  RecordingCounts c;
+  auto reader = mavlink::TlogReader::open(path);
+  EXPECT_TRUE(reader);
+  if (!reader) return c;
+  const auto messages = mavlink::MessageSet::compiled();
+  mavlink::FrameParser parser(messages);
+  mavlink::TlogRecord r;
+  while (reader->next(r)) {
+    parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
+      const bool sim = f.sysid == kSimulatorSystemId;
+      if (sim && f.is<msg::Odometry>() && f.as<msg::Odometry>().estimator_type == static_cast<uint8_t>(mavlink::MavEstimatorType::Mocap)) ++c.truth;
+      if (sim && f.is<msg::PositionTargetLocalNed>()) ++c.setpoint;
+      if (sim && f.is<msg::NamedValueFloat>() && mavlink::text_of(f.as<msg::NamedValueFloat>().name) == kTrackingErrorName) ++c.tracking;
+      if (!sim && f.is<msg::LocalPositionNed>()) ++c.estimate;
+      if (!sim && f.is<msg::Attitude>()) ++c.attitude;
+      if (!sim && f.is<msg::HilActuatorControls>()) ++c.actuators;
+    });
+  }
+  return c;
+}
+
+std::string last_line(const std::string& out) {
+  std::string text = out;
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  const auto nl = text.rfind('\n');
+  return nl == std::string::npos ? text : text.substr(nl + 1);
+}
+
+std::string fixed2(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", v);
+  return text;
+}
+
+/// Headless Chromium's screenshot of `html` into `png`; "" when taken, else why not.
+std::string screenshot(const std::string& chromium, const std::string& html, const std::string& png, const std::string& profile) {
+  auto r = test::run_program({chromium, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars", "--user-data-dir=" + profile,
+                              "--window-size=1200,3200", "--screenshot=" + png, "file://" + html},
+                             180s);
+  if (r.exit_code != 0) return "chromium exit " + std::to_string(r.exit_code) + ": " + r.err;
+  if (!std::filesystem::exists(png)) return "chromium wrote no " + png + ": " + r.err;
+  return "";
+}
+
+TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
+  const std::string dir = test::temp_dir();
+  const std::string tlog = dir + "/demo.tlog", html = dir + "/demo.html";
+  auto demo = test::run_hitl({"--json", "demo", "--record", tlog, "--report", html}, 300s);
+  ASSERT_EQ(demo.exit_code, 0) << demo.out << demo.err;
+  const auto summary = test::last_json_line(demo.out);
+  ASSERT_EQ(summary["type"], "summary") << demo.out;
+  EXPECT_EQ(summary["report"]["path"], html);
+  EXPECT_EQ(summary["recording"], tlog);
+  const std::string page = read_file(html);
+  for (const char* reach : {"<script", "src=\"http", "href=\"http", "href='http", "url(http", "@import"})
+    EXPECT_EQ(page.find(reach), std::string::npos) << "the page must not reach the network: " << reach;
+
+  // The summary table's tracking figures are the session's.
+  const auto& trajectory = summary["trajectory"];
+  EXPECT_NE(page.find("RMS " + fixed2(trajectory["rms_m"]) + " m, max " + fixed2(trajectory["max_m"]) + " m (" +
+                      std::to_string(trajectory["samples"].get<uint64_t>()) + " samples)"),
+            std::string::npos)
+      << trajectory.dump();
+
+  // Each plot's series: in its SVG, drawn with the points claimed, of the samples recorded.
+  const auto counts = count_recording(tlog);
+  const auto figures = figures_of(page);
+  for (const char* id : {"top-view", "altitude", "tracking-error", "attitude-roll", "attitude-pitch", "attitude-yaw", "motors",
+                         "rates", "jitter", "ekf"})
+    EXPECT_TRUE(figures.count(id)) << "no figure " << id;
+  for (const auto& [id, series] : figures) {
+    for (const auto& s : series) {
+      EXPECT_EQ(s.drawn, s.points) << id << " / " << s.title;
+      EXPECT_GT(s.points, 0u) << id << " / " << s.title;
+      EXPECT_LE(s.points, 2600u) << id << " / " << s.title;
+    }
+  }
+  auto samples = [&](const std::string& id, const std::string& title) -> std::size_t {
+    if (!figures.count(id)) return 0;
+    for (const auto& s : figures.at(id))
+      if (s.title == title) return s.samples;
+    return 0;
+  };
+  EXPECT_GT(counts.truth, 1000u);
+  EXPECT_EQ(samples("top-view", "truth"), counts.truth);
+  EXPECT_EQ(samples("top-view", "setpoint"), counts.setpoint);
+  EXPECT_EQ(samples("top-view", "estimate"), counts.estimate);
+  EXPECT_EQ(samples("altitude", "truth"), counts.truth);
+  EXPECT_EQ(samples("tracking-error", "error against truth"), counts.tracking);
+  EXPECT_EQ(counts.tracking, trajectory["samples"].get<std::size_t>());
+  EXPECT_EQ(samples("attitude-roll", "estimate"), counts.attitude);
+  EXPECT_EQ(samples("motors", "motor 1"), counts.actuators);
+
+  // Chromium draws it, and what it draws is not a blank page.
+  const std::string chromium = test::find_program("chromium");
+  if (chromium.empty()) {
+    if (std::getenv("CI") != nullptr) FAIL() << "chromium is not installed (scripts/install-deps.sh --test installs it)";
+    GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh --test)";
+  }
+  const std::string shot = HITL_REPORT_SCREENSHOT;
+  std::filesystem::remove(shot);
+  ASSERT_EQ(screenshot(chromium, html, shot, dir + "/profile"), "");
+  const std::string blank_html = dir + "/blank.html", blank_png = dir + "/blank.png";
+  std::ofstream(blank_html) << "<!DOCTYPE html><html><body></body></html>\n";
+  ASSERT_EQ(screenshot(chromium, blank_html, blank_png, dir + "/profile"), "");
+  const auto shot_bytes = std::filesystem::file_size(shot), blank_bytes = std::filesystem::file_size(blank_png);
+  // A white 1200x3200 page compresses to a few KiB; the report's plots and tables to far more.
+  EXPECT_GT(shot_bytes, 10 * blank_bytes) << shot << ": " << shot_bytes << " bytes, a blank page " << blank_bytes;
+  std::cout << "screenshot: " << shot << " (" << shot_bytes << " bytes)\n";
+}
+
+TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults) {
+  // hitl sim -t --report against hitl target: no --record given, the recording goes beside the page.
+  const std::string dir = test::temp_dir();
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t",
+                     std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--fault", "gps-loss@15+3", "--report",
+                     dir + "/flight.html"});
+  EXPECT_EQ(sim.wait(150s), 0) << sim.err();
+  board.signal(SIGINT);
+  board.wait(20s);
+  EXPECT_EQ(last_line(sim.out()), dir + "/flight.html") << sim.out();
+  EXPECT_NE(sim.err().find("--report: recording to " + dir + "/flight.tlog"), std::string::npos) << sim.err();
+  EXPECT_TRUE(std::filesystem::exists(dir + "/flight.tlog"));
+  const std::string page = read_file(dir + "/flight.html");
+  for (const char* id : {"top-view", "altitude", "tracking-error", "motors", "rates"})
+    EXPECT_NE(page.find(std::string("<figure id=\"plot-") + id + "\""), std::string::npos) << id;
+  // The fault's start and end and the pilot's states are events with their simulated times.
+  EXPECT_NE(page.find("<td>15.00</td><td>simulator</td><td>info</td><td>t=15.000 s fault gps-loss started (3 s)</td>"),
+            std::string::npos);
+  EXPECT_NE(page.find("<td>pilot</td><td>info</td><td>trajectory: HOLD (trajectory flown)</td>"), std::string::npos);
+  EXPECT_EQ(page.find("What this log lacks</h2>\n<ul class=\"lacks\" id=\"lacks\">\n<li>ground truth"), std::string::npos);
+}
+
+TEST(ReportE2E, FlyTrajectoryReportThroughASessionIsScoredOnTheEstimate) {
+  // hitl fly trajectory --report, through a session: the link's frames (the board's telemetry, the
+  // session's truth) and the pilot's setpoints and errors, against the board's estimate.
+  const std::string dir = test::temp_dir();
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", std::to_string(clients), "--lockstep",
+                     "--speed", "5", "--duration", "300"});
+  ASSERT_TRUE(sim.wait_for_stderr("clients on", 10s)) << sim.err();
+  auto r = test::run_hitl({"--json", "fly", "--session-port", std::to_string(clients), "-i", "127.0.0.1", "--port",
+                           std::to_string(test::free_udp_port()), "--local-port", std::to_string(test::free_udp_port()),
+                           "trajectory", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--report", dir + "/fly.html"},
+                          120s);
+  sim.signal(SIGINT);
+  sim.wait(20s);
+  board.signal(SIGINT);
+  board.wait(20s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto j = test::last_json_line(r.out);
+  EXPECT_EQ(j["report"]["path"], dir + "/fly.html");
+  const std::string page = read_file(dir + "/fly.html");
+  EXPECT_NE(page.find("RMS " + fixed2(j["rms_m"]) + " m, max " + fixed2(j["max_m"]) + " m (" +
+                      std::to_string(j["samples"].get<uint64_t>()) + " samples)"),
+            std::string::npos)
+      << j.dump().substr(0, 300);
+  const auto figures = figures_of(page);
+  for (const char* id : {"top-view", "altitude", "tracking-error"}) EXPECT_TRUE(figures.count(id)) << id;
+  bool truth = false;
+  for (const auto& s : figures.at("top-view")) truth = truth || s.title == "truth";
+  EXPECT_TRUE(truth) << "the session's truth ODOMETRY reached the recording";
+}
+
+TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
+  // hitl target (the board's MAVLink, no simulator) recorded by hitl inspect: no truth, no pilot.
+  const std::string dir = test::temp_dir();
+  const std::string hil = std::to_string(test::free_udp_port()), gcs = std::to_string(test::free_udp_port());
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", hil, "--gcs-port", gcs, "--vio-port", "0"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  auto rec = test::run_hitl({"inspect", "--connect", "127.0.0.1:" + gcs, "--local-port", std::to_string(test::free_udp_port()),
+                             "--duration", "4", "--record", dir + "/plain.tlog"},
+                            30s);
+  board.signal(SIGINT);
+  board.wait(10s);
+  ASSERT_EQ(rec.exit_code, 0) << rec.err;
+
+  auto r = test::run_hitl({"report", dir + "/plain.tlog"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(last_line(r.out), dir + "/plain.html");
+  EXPECT_NE(r.err.find("the log lacks:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("ground truth"), std::string::npos) << r.err;
+  const std::string page = read_file(dir + "/plain.html");
+  EXPECT_NE(page.find("What this log lacks"), std::string::npos);
+  EXPECT_NE(page.find("the simulator's clock"), std::string::npos);
+  const auto figures = figures_of(page);
+  // Without sensor input the board has an attitude and EKF test ratios, but no position.
+  EXPECT_TRUE(figures.count("attitude-roll")) << "the board's ATTITUDE is drawn";
+  EXPECT_TRUE(figures.count("ekf")) << "the board's ESTIMATOR_STATUS is drawn";
+  EXPECT_FALSE(figures.count("top-view"));
+  EXPECT_NE(page.find("the vehicle's position estimate (LOCAL_POSITION_NED)"), std::string::npos);
+  EXPECT_FALSE(figures.count("tracking-error"));
+  for (const auto& [id, series] : figures)
+    for (const auto& s : series) {
+      EXPECT_NE(s.title, "truth") << id;
+      EXPECT_EQ(s.drawn, s.points) << id << " / " << s.title;
+    }
+  EXPECT_NE(page.find("hitl target: an emulated VOXL2 board"), std::string::npos) << "its STATUSTEXT is an event";
+
+  // --json: one summary line with what it lacks.
+  auto j = test::run_hitl({"--json", "report", dir + "/plain.tlog", "-o", dir + "/again.html"});
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const auto s = test::last_json_line(j.out);
+  EXPECT_EQ(s["type"], "summary");
+  EXPECT_EQ(s["path"], dir + "/again.html");
+  EXPECT_GT(s["lacks"].size(), 3u);
+}
+
+TEST(ReportE2E, NotATlogIsBadInputNamed) {
+  const std::string dir = test::temp_dir();
+  std::ofstream(dir + "/notes.txt") << "not a telemetry log\n";
+  {  // noise (fixed, so the same every run): whatever looks like a frame of an unknown id is not a log
+    std::string bytes(100000, '\0');
+    uint32_t x = 12345;
+    for (char& c : bytes) c = static_cast<char>((x = x * 1664525u + 1013904223u) >> 24);
+    std::ofstream(dir + "/random.tlog", std::ios::binary) << bytes;
+  }
+  auto noise = test::run_hitl({"report", dir + "/random.tlog"});
+  EXPECT_EQ(noise.exit_code, 2) << noise.err;
+  auto r = test::run_hitl({"report", dir + "/notes.txt"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("hitl report: '" + dir + "/notes.txt' holds no MAVLink frame"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/notes.html"));
+}
+
+}  // namespace
+}  // namespace hitl

@@ -1,0 +1,211 @@
+// Series extraction from a tlog written here frame by frame: the simulator's clock, what comes from
+// whom, the tracking summary, events, and what a plain log lacks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "base/contract/session_status.h"
+#include "base/mavlink/enums.h"
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/messages.h"
+#include "base/mavlink/text_field.h"
+#include "engine/mavlink/tlog.h"
+#include "engine/report/flight_log.h"
+
+namespace hitl::report {
+namespace {
+namespace msg = mavlink::msg;
+
+class LogWriter {
+ public:
+  explicit LogWriter(const std::string& path) : writer_(mavlink::TlogWriter::open(path).value()) {}
+  template <class M>
+  void add(uint64_t wall_us, uint8_t sysid, uint8_t compid, const M& m) {
+    auto& enc = encoders_.try_emplace(sysid * 256 + compid, sysid, compid).first->second;
+    mavlink::FrameBuffer buf;
+    const std::size_t n = enc.encode(m, buf);
+    writer_.write(kEpoch_us + wall_us, {buf.data(), n});
+  }
+  void close() { writer_.flush(); }
+  static constexpr uint64_t kEpoch_us = 1'700'000'000'000'000;
+
+ private:
+  mavlink::TlogWriter writer_;
+  std::map<int, mavlink::FrameEncoder> encoders_;
+};
+
+msg::HilSensor sensor_at(uint64_t sim_us) {
+  msg::HilSensor s;
+  s.time_usec = sim_us;
+  return s;
+}
+
+msg::NamedValueFloat named(std::string_view name, float v) {
+  msg::NamedValueFloat m;
+  mavlink::set_text(m.name, name);
+  m.value = v;
+  return m;
+}
+
+msg::Heartbeat heartbeat(bool armed) {
+  msg::Heartbeat hb;
+  hb.type = 2;       // quadrotor
+  hb.autopilot = 12;  // PX4
+  hb.base_mode = static_cast<uint8_t>(1 | (armed ? mavlink::mode_flag::kSafetyArmed : 0));
+  return hb;
+}
+
+TEST(FlightLog, TimesAreTheSimulatorsClockInterpolatedBetweenItsHilSensors) {
+  // The simulator runs twice as fast as the wall clock: 4 ms of simulated time per 2 ms of wall.
+  const std::string path = ::testing::TempDir() + "clock.tlog";
+  {
+    LogWriter w(path);
+    for (uint64_t k = 0; k <= 100; ++k) {
+      w.add(k * 2000, kSimulatorSystemId, 1, sensor_at(k * 4000));
+      if (k != 50) continue;
+      msg::LocalPositionNed p;
+      p.z = -2.0F;
+      w.add(101 * 1000, 1, 1, p);  // halfway between wall 100 ms and 102 ms: simulated 202 ms
+    }
+    w.close();
+  }
+  auto log = read_flight_log(path);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_TRUE(log->simulated_time);
+  ASSERT_EQ(log->estimate.size(), 1u);
+  EXPECT_NEAR(log->estimate.t_s[0], 0.202, 1e-9);
+  EXPECT_DOUBLE_EQ(log->estimate.down_m[0], -2.0);
+  EXPECT_NEAR(log->duration_s, 0.4, 1e-9);
+  EXPECT_NEAR(log->wall_duration_s, 0.2, 1e-9);
+  ASSERT_EQ(log->paths.size(), 1u);  // HIL_SENSOR only
+  EXPECT_EQ(log->paths[0].name, "HIL_SENSOR");
+  EXPECT_EQ(log->paths[0].count, 101u);
+  EXPECT_NEAR(log->paths[0].mean_rate_hz, 250.0, 1e-6);  // per simulated second
+}
+
+TEST(FlightLog, TruthSetpointsAndTrackingErrorComeFromTheSimulatorAndThePilot) {
+  const std::string path = ::testing::TempDir() + "flight.tlog";
+  const std::vector<float> errors = {0.1F, 0.5F, 0.2F, 0.8F};
+  {
+    LogWriter w(path);
+    for (uint64_t k = 0; k < 4; ++k) {
+      const uint64_t t = k * 4000;
+      w.add(t, kSimulatorSystemId, 1, sensor_at(t));
+      msg::Odometry truth;
+      truth.time_usec = t;
+      truth.x = 1.0F * static_cast<float>(k);
+      truth.q = {1, 0, 0, 0};
+      truth.estimator_type = static_cast<uint8_t>(mavlink::MavEstimatorType::Mocap);
+      w.add(t, kSimulatorSystemId, 1, truth);
+      msg::Odometry vio = truth;  // VIO to the board: a data path, not the truth
+      vio.estimator_type = static_cast<uint8_t>(mavlink::MavEstimatorType::Vio);
+      w.add(t, kSimulatorSystemId, kVioComponentId, vio);
+      msg::PositionTargetLocalNed sp;
+      sp.y = 2.0F;
+      w.add(t, kSimulatorSystemId, mavlink::kCompIdPathPlanner, sp);
+      w.add(t, kSimulatorSystemId, mavlink::kCompIdPathPlanner, named(kTrackingErrorName, errors[k]));
+      w.add(t, 1, 1, named(kTrackingErrorName, 9.0F));  // the vehicle's own value of that name: not the pilot's
+      msg::HilActuatorControls a;
+      a.controls[2] = 0.5F;
+      w.add(t, 1, 1, a);
+    }
+    w.close();
+  }
+  auto log = read_flight_log(path);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_EQ(log->truth.size(), 4u);
+  EXPECT_EQ(log->truth_attitude.size(), 4u);
+  EXPECT_DOUBLE_EQ(log->truth.north_m[3], 3.0);
+  EXPECT_EQ(log->setpoint.size(), 4u);
+  EXPECT_DOUBLE_EQ(log->setpoint.east_m[0], 2.0);
+  ASSERT_TRUE(log->tracking);
+  EXPECT_EQ(log->tracking->samples, 4u);
+  double sum_sq = 0;
+  for (float e : errors) sum_sq += static_cast<double>(e) * e;
+  EXPECT_DOUBLE_EQ(log->tracking->rms_m, std::sqrt(sum_sq / 4));
+  EXPECT_DOUBLE_EQ(log->tracking->max_m, static_cast<double>(0.8F));
+  EXPECT_EQ(log->motors[2].size(), 4u);
+  EXPECT_DOUBLE_EQ(log->motors[2].value[0], 0.5);
+  std::vector<std::string> names;
+  for (const auto& p : log->paths) names.push_back(p.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"HIL_SENSOR", "ODOMETRY (VIO)", "HIL_ACTUATOR_CONTROLS"}));
+}
+
+TEST(FlightLog, APlainLogGivesWhatItHasAndSaysWhatItLacks) {
+  // A ground station's log: a vehicle's HEARTBEAT, position, attitude and a STATUSTEXT; no simulator.
+  const std::string path = ::testing::TempDir() + "plain.tlog";
+  {
+    LogWriter w(path);
+    w.add(0, 1, 1, heartbeat(false));
+    msg::Attitude att;
+    att.roll = static_cast<float>(M_PI / 2);
+    w.add(500'000, 1, 1, att);
+    w.add(1'000'000, 1, 1, heartbeat(true));
+    msg::Statustext st;
+    st.severity = 4;  // warning
+    mavlink::set_text(st.text, "Preflight Fail: ekf2 missing data");
+    w.add(1'500'000, 1, 1, st);
+    msg::LocalPositionNed p;
+    w.add(2'000'000, 1, 1, p);
+    w.close();
+  }
+  auto log = read_flight_log(path);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_FALSE(log->simulated_time);
+  EXPECT_DOUBLE_EQ(log->estimate.t_s[0], 2.0);  // seconds since the first record
+  EXPECT_NEAR(log->estimate_attitude.roll_deg[0], 90.0, 1e-4);
+  EXPECT_EQ(log->truth.size(), 0u);
+  EXPECT_FALSE(log->tracking);
+  ASSERT_EQ(log->events.size(), 4u);  // disarmed + mode at the first HEARTBEAT, armed, the text
+  EXPECT_EQ(log->events[0].text, "disarmed");
+  EXPECT_EQ(log->events[2].text, "armed");
+  EXPECT_DOUBLE_EQ(log->events[2].t_s, 1.0);
+  EXPECT_EQ(log->events[3].text, "Preflight Fail: ekf2 missing data");
+  EXPECT_EQ(log->events[3].severity, Severity::Warning);
+  EXPECT_EQ(log->events[3].source, "system 1");
+  auto lacks = [&](const std::string& start) {
+    for (const auto& m : log->missing)
+      if (m.rfind(start, 0) == 0) return true;
+    return false;
+  };
+  EXPECT_TRUE(lacks("the simulator's clock"));
+  EXPECT_TRUE(lacks("ground truth"));
+  EXPECT_TRUE(lacks("setpoints"));
+  EXPECT_TRUE(lacks("motor commands"));
+  EXPECT_FALSE(lacks("the vehicle's position estimate"));
+}
+
+TEST(FlightLog, AFileWithoutFramesIsBadInputNamed) {
+  const std::string path = ::testing::TempDir() + "not_a.tlog";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    std::fputs("this is not a telemetry log at all, just some text\n", f);
+    std::fclose(f);
+  }
+  auto log = read_flight_log(path);
+  ASSERT_FALSE(log);
+  EXPECT_EQ(log.error().kind, ErrorKind::Input);
+  EXPECT_NE(log.error().message.find(path), std::string::npos) << log.error().message;
+}
+
+TEST(FlightLog, EventsBeyondTheLimitAreCountedNotKept) {
+  const std::string path = ::testing::TempDir() + "events.tlog";
+  {
+    LogWriter w(path);
+    for (uint64_t k = 0; k < 30; ++k) {
+      msg::Statustext st;
+      mavlink::set_text(st.text, "text " + std::to_string(k));
+      w.add(k * 1000, 1, 1, st);
+    }
+    w.close();
+  }
+  ReadLimits limits;
+  limits.max_events = 10;
+  auto log = read_flight_log(path, limits);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_EQ(log->events.size(), 10u);
+  EXPECT_EQ(log->missing.back(), "20 events after the first 10");
+}
+
+}  // namespace
+}  // namespace hitl::report
