@@ -1,6 +1,7 @@
 #include "engine/board/board_plan.h"
 
 #include <cstdio>
+#include <fstream>
 
 #include "engine/board/board_facts.h"
 #include "engine/board/board_state.h"
@@ -101,6 +102,26 @@ Expected<PackageFile> package_file(const std::string& path) {
   if (name.size() < 5 || name.substr(name.size() - 4) != ".deb" || first == 0 || second == std::string::npos || second == first + 1)
     return Error::input(path + ": not a Debian package file name (NAME_VERSION_ARCH.deb, as cpack names them)");
   return PackageFile{path, name.substr(0, first), name.substr(first + 1, second - first - 1)};
+}
+
+Expected<PackageFile> local_package(const std::string& path) {
+  auto p = package_file(path);
+  if (!p) return p.error();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error::input(path + ": cannot be read");
+  return p;
+}
+
+Expected<std::vector<PackageFile>> build_packages(const std::string& dir, const std::string& version) {
+  std::vector<PackageFile> files;
+  for (const char* name : kHitlPackages) {
+    const std::string path = (dir.empty() ? std::string(".") : dir) + "/" + name + "_" + version + "_arm64.deb";
+    if (!std::ifstream(path, std::ios::binary))
+      return Error::input("no " + path + ": build this version's board packages (`cmake -S target -B DIR ...; cpack -G DEB` in DIR, "
+                          "docs/board-packages.md) and give --packages DIR, or name the .deb files");
+    files.push_back(PackageFile{path, name, version});
+  }
+  return files;
 }
 
 Expected<BoardPlan> make_install_plan(const BoardSurvey& survey, const InstallOptions& options) {

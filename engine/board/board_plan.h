@@ -70,6 +70,12 @@ struct PackageFile {
 /// An Error of kind Input naming the file when its name is not NAME_VERSION_ARCH.deb.
 Expected<PackageFile> package_file(const std::string& path);
 
+/// This build's board packages in `dir`: NAME_VERSION_arm64.deb for each of kHitlPackages, as cpack
+/// names them. An Error of kind Input naming the missing file and how to build it.
+Expected<std::vector<PackageFile>> build_packages(const std::string& dir, const std::string& version);
+/// A package file given by the user: its name must parse and the file must be readable.
+Expected<PackageFile> local_package(const std::string& path);
+
 struct InstallOptions {
   std::vector<PackageFile> packages;  ///< what to push and dpkg -i, in this order
 };

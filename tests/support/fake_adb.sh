@@ -9,6 +9,10 @@
 #   FAKE_ADB_ROOT        the device's file system root for pushed files, and the relay's log
 #   FAKE_ADB_RELAY_PORT  the TCP port the relay listens on here (what `forward` prints)
 #   FAKE_ADB_RELAY_ARGS  more relay options for this machine (its UDP targets, source ports)
+#
+# `shell` commands see the board's files under the device root: /etc/modalai, /data and
+# /tmp/hitl-board in a command are rewritten to $FAKE_ADB_ROOT/etc/modalai, ... (hitl board's
+# files); the stand-in board programs (fake_board.sh: dpkg, systemctl, ...) sit in $FAKE_ADB_ROOT/bin.
 set -u
 log="${FAKE_ADB_LOG:?FAKE_ADB_LOG must name the file that records the calls}"
 printf '%s\n' "$*" >> "$log"
@@ -80,6 +84,9 @@ case "${1:-}" in
     shift
     cmd="$*"
     cmd="${cmd//\/tmp\/hitl-adb-relay/$root/tmp/hitl-adb-relay}"
+    cmd="${cmd//\/tmp\/hitl-board/$root/tmp/hitl-board}"
+    cmd="${cmd//\/etc\/modalai/$root/etc/modalai}"
+    cmd="${cmd//\/data\//$root/data/}"
     if [[ "$cmd" == *hitl-adb-relay*--daemon* ]]; then
       cmd="$cmd --port ${FAKE_ADB_RELAY_PORT:?} --log $root/relay.log ${FAKE_ADB_RELAY_ARGS:-}"
     fi
