@@ -211,6 +211,9 @@ BoardPlan make_start_plan(const BoardSurvey& survey, const StartOptions& options
     stop.undo.push_back(std::string("systemctl start ") + kPx4Service);
     plan.steps.push_back(stop);
   }
+  if (survey.version("voxl-hitl-px4-scripts").empty())
+    plan.notes.push_back(std::string("voxl-hitl-px4-scripts is not installed: ") + kPx4HitlScript +
+                         " is whatever the board has (voxl-px4's own, if any); hitl board install puts hitl's in place");
   const bool running = survey.service(kPx4HitlUnit).active;
   BoardStep px4;
   if (running && !options.reset_params) {
@@ -278,8 +281,15 @@ BoardPlan make_stop_plan(const BoardSurvey& survey) {
     }
     plan.steps.push_back(step);
   }
-  if (!survey.service(kPx4Service).active)
-    plan.notes.push_back(std::string("the normal PX4 (") + kPx4Service + ") stays stopped until hitl board restore (or a reboot, when it is enabled)");
+  // The board as it boots: the normal PX4 again, when it is enabled (start stopped it).
+  const ServiceState px4 = survey.service(kPx4Service);
+  if (px4.enabled && !px4.active) {
+    BoardStep normal;
+    normal.name = std::string("start the normal PX4 (") + kPx4Service + "), as the board boots";
+    normal.actions.push_back(BoardAction::shell(std::string("systemctl start ") + kPx4Service));
+    normal.undo.push_back(std::string("systemctl stop ") + kPx4Service);
+    plan.steps.push_back(normal);
+  }
   return plan;
 }
 

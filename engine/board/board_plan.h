@@ -90,7 +90,8 @@ struct StartOptions {
 /// start: stop voxl-px4, PX4 in HITL under systemd-run, wait, the HITL parameters (restart when
 /// needed), the VIO server, vision-hub: the spec's step 9 order.
 BoardPlan make_start_plan(const BoardSurvey& survey, const StartOptions& options);
-/// stop: vision-hub, the VIO server, PX4 in HITL (the reverse order).
+/// stop: vision-hub, the VIO server, PX4 in HITL (the reverse order), then the normal PX4 when it is
+/// enabled (the board as it boots).
 BoardPlan make_stop_plan(const BoardSurvey& survey);
 
 struct RestoreOptions {

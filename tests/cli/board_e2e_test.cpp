@@ -170,6 +170,41 @@ TEST_F(BoardE2E, AFailureMidwayStopsSaysWhatIsChangedAndHowToUndoIt) {
   EXPECT_EQ(fake_.board_package("voxl-hitl-vio-server"), "");
 }
 
+// --json: a status object before each step, exactly one summary, last (README's vocabulary).
+TEST_F(BoardE2E, JsonIsStatusObjectsPerStepAndOneSummaryLast) {
+  const auto failed = [&] {
+    ScopedEnv fail("FAKE_BOARD_FAIL", "dpkg -i");
+    return board({"install", "--packages", debs_}, true);
+  }();
+  EXPECT_EQ(failed.exit_code, 1);
+  const auto f = nlohmann::json::parse(lines_of(failed.out).back());
+  EXPECT_EQ(f["type"], "summary");
+  EXPECT_EQ(f["ok"], false);
+  EXPECT_EQ(f["failed_step"]["index"], 3);
+  EXPECT_EQ(f["failed_step"]["name"], "install the packages");
+  EXPECT_NE(f["failed_step"]["board_output"].get<std::string>().find("told to fail"), std::string::npos) << f;
+  EXPECT_EQ(f["undo_command"], "hitl board restore");
+  EXPECT_EQ(f["undo"], (nlohmann::json{"dpkg --purge voxl-hitl-vio-server voxl-hitl-px4-scripts", "rm -rf /data/hitl-board", "rm -rf /tmp/hitl-board"}));
+
+  // Again: the failed run's record is kept (the board before it), so one step fewer.
+  const auto r = board({"install", "--packages", debs_}, true);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 7u) << r.out;
+  for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+    const auto j = nlohmann::json::parse(lines[i]);
+    EXPECT_EQ(j["type"], "status");
+    EXPECT_EQ(j["step"], i + 1);
+    EXPECT_EQ(j["of"], 6);
+  }
+  const auto summary = nlohmann::json::parse(lines.back());
+  EXPECT_EQ(summary["type"], "summary");
+  EXPECT_EQ(summary["action"], "install");
+  EXPECT_EQ(summary["ok"], true);
+  EXPECT_EQ(summary["steps_done"], 6);
+  EXPECT_EQ(fake_.board_file("/data/hitl-board/voxl-vision-hub.conf.orig"), kShippedVisionHub);
+}
+
 TEST_F(BoardE2E, InstallWithoutThisBuildsPackagesNamesTheFileItLookedFor) {
   const auto r = board({"install", "--packages", "/nonexistent"});
   EXPECT_EQ(r.exit_code, 2);
@@ -247,6 +282,8 @@ TEST_F(BoardE2E, StartWaitsForPx4SetsTheParametersRestartsPx4ForSysHitlThenStart
     if (c.rfind("systemctl stop", 0) == 0) changes.push_back(c);
   EXPECT_EQ(changes, (std::vector<std::string>{"systemctl stop voxl-vision-hub", "systemctl stop voxl-hitl-vio-server", "systemctl stop voxl-px4-hitl"}));
   EXPECT_EQ(fake_.board_service("voxl-px4-hitl"), "disabled inactive");
+  EXPECT_EQ(fake_.board_service("voxl-px4"), "enabled active") << "the board as it boots";
+  EXPECT_EQ(after.back(), "systemctl start voxl-px4");
 
   px4.signal(SIGINT);
   px4.wait(10s);

@@ -115,7 +115,11 @@ TEST(StopPlan, ReverseOrderOnlyWhatRuns) {
   auto board = new_board();
   board.services = {{"voxl-px4", true, false}, {"voxl-hitl-vio-server", true, true}, {"voxl-vision-hub", true, true}, {"voxl-px4-hitl", false, true}};
   const auto cmds = shell_commands(make_stop_plan(board));
-  EXPECT_EQ(cmds, (std::vector<std::string>{"systemctl stop voxl-vision-hub", "systemctl stop voxl-hitl-vio-server", "systemctl stop voxl-px4-hitl"}));
+  EXPECT_EQ(cmds, (std::vector<std::string>{"systemctl stop voxl-vision-hub", "systemctl stop voxl-hitl-vio-server", "systemctl stop voxl-px4-hitl",
+                                            "systemctl start voxl-px4"}));
+  // voxl-px4 disabled (not how this board boots): left stopped.
+  board.services[0].enabled = false;
+  EXPECT_EQ(shell_commands(make_stop_plan(board)).size(), 3u);
 }
 
 TEST(RestorePlan, BackFromTheRecord) {
