@@ -117,12 +117,13 @@ int run_plan_command(const GlobalOptions& g, const BoardOptions& o, const Report
       std::istringstream in(report.board_output);
       for (std::string line; std::getline(in, line);) std::cerr << "  " << line << '\n';
     }
+    if (!plan.after_failure.empty()) std::cerr << plan.after_failure << '\n';
     if (report.changed.empty()) {
       std::cerr << "nothing was changed on the board\n";
     } else {
       std::cerr << "already changed on the board:\n";
       for (const auto& c : report.changed) std::cerr << "  - " << c << (c == plan.steps[i].name ? " (may be partly done)" : "") << '\n';
-      std::cerr << "to undo: " << (plan.undo_command.empty() ? "by hand" : plan.undo_command) << '\n';
+      if (!plan.undo_command.empty() || !report.undo.empty()) std::cerr << "to undo: " << (plan.undo_command.empty() ? "by hand" : plan.undo_command) << '\n';
       if (!report.undo.empty()) {
         std::cerr << (plan.undo_command.empty() ? "" : "  or by hand, in this order:\n");
         for (const auto& u : report.undo) std::cerr << "    adb shell " << quoted_for_adb(u) << '\n';
@@ -134,6 +135,7 @@ int run_plan_command(const GlobalOptions& g, const BoardOptions& o, const Report
                          {"board_output", report.board_output}};
   body["undo"] = report.undo;
   body["undo_command"] = plan.undo_command;
+  body["after_failure"] = plan.after_failure;
   r.summary(body);
   return kExitFailed;
 }

@@ -300,6 +300,7 @@ Expected<BoardPlan> make_restore_plan(const BoardSurvey& survey, const RestoreOp
   if (!before) return before.error();
   BoardPlan plan;
   plan.command = "restore";
+  plan.after_failure = std::string("the record stays until the last step: run hitl board restore again once the failure is fixed");
 
   BoardStep stop;
   stop.name = "stop the HITL services";
@@ -307,20 +308,10 @@ Expected<BoardPlan> make_restore_plan(const BoardSurvey& survey, const RestoreOp
   for (const char* s : {kVisionHubService, kVioServerService, kPx4HitlUnit})
     if (survey.service(s).active) stop.actions.push_back(BoardAction::shell(std::string("systemctl stop ") + s));
   if (stop.actions.empty()) stop.name = "the HITL services are not running";
+  stop.changes_board = !stop.actions.empty();
   plan.steps.push_back(stop);
 
   const bool removing = !options.keep_packages;
-  BoardStep files;
-  files.name = "put the configuration back from " + std::string(kBackupDir);
-  for (const auto& [path, present] : before->files_present) {
-    if (present) {
-      files.actions.push_back(BoardAction::shell("cp -p " + backup_path(path) + " " + path));
-    } else if (path == kVisionHubConf || !removing) {
-      files.actions.push_back(BoardAction::shell("rm -f " + path));
-    }  // the vio server's conffile goes with its package (dpkg --purge)
-  }
-  plan.steps.push_back(files);
-
   if (removing) {
     BoardStep purge;
     purge.name = "remove the HITL packages";
@@ -344,6 +335,18 @@ Expected<BoardPlan> make_restore_plan(const BoardSurvey& survey, const RestoreOp
   } else {
     plan.notes.push_back("--keep: the HITL packages stay installed");
   }
+
+  // After the purge: dpkg --purge removes a conffile, which may be an original to put back.
+  BoardStep files;
+  files.name = "put the configuration back from " + std::string(kBackupDir);
+  for (const auto& [path, present] : before->files_present) {
+    if (present) {
+      files.actions.push_back(BoardAction::shell("cp -p " + backup_path(path) + " " + path));
+    } else if (path == kVisionHubConf || !removing) {
+      files.actions.push_back(BoardAction::shell("rm -f " + path));
+    }  // the vio server's conffile goes with its package (dpkg --purge)
+  }
+  plan.steps.push_back(files);
 
   BoardStep services;
   services.name = "the services as they were";

@@ -53,6 +53,8 @@ struct BoardPlan {
   std::vector<BoardStep> steps;
   /// The one command that undoes a partial run, when there is one ("hitl board restore").
   std::string undo_command;
+  /// What to do after a failure when there is no undo command (restore: run it again).
+  std::string after_failure;
 };
 
 /// The plan's text as --dry-run prints it and a real run says it, one line each:

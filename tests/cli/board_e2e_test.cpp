@@ -170,6 +170,24 @@ TEST_F(BoardE2E, AFailureMidwayStopsSaysWhatIsChangedAndHowToUndoIt) {
   EXPECT_EQ(fake_.board_package("voxl-hitl-vio-server"), "");
 }
 
+TEST_F(BoardE2E, ARestoreThatFailsMidwayFinishesWhenRunAgain) {
+  ASSERT_EQ(install().exit_code, 0);
+  const auto r = [&] {
+    ScopedEnv fail("FAKE_BOARD_FAIL", "dpkg --purge");
+    return board({"restore"});
+  }();
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("\"remove the HITL packages\" failed: $ dpkg --purge voxl-hitl-vio-server voxl-hitl-px4-scripts: exit 1"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("run hitl board restore again once the failure is fixed"), std::string::npos) << r.err;
+  EXPECT_TRUE(fake_.board_file_exists("/data/hitl-board/state"));
+  const auto again = board({"restore"});
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(fake_.board_file("/etc/modalai/voxl-vision-hub.conf"), kShippedVisionHub);
+  EXPECT_EQ(fake_.board_package("voxl-hitl-px4-scripts"), "");
+  EXPECT_FALSE(fake_.board_file_exists("/data/hitl-board"));
+}
+
 // --json: a status object before each step, exactly one summary, last (README's vocabulary).
 TEST_F(BoardE2E, JsonIsStatusObjectsPerStepAndOneSummaryLast) {
   const auto failed = [&] {
