@@ -19,7 +19,8 @@ namespace hitl::cli {
 namespace {
 
 struct BoardOptions {
-  bool adb = false;                 ///< --adb: accepted; the board's commands always go through adb
+  bool adb = false;                 ///< --adb: over USB (the default)
+  bool network = false;             ///< -i given without --adb/--adb-serial: adb over the network (adb connect IP:5555)
   std::string adb_serial;           ///< --adb-serial S
   bool dry_run = false;             ///< --dry-run
   std::vector<std::string> files;   ///< install: .deb files
@@ -229,7 +230,7 @@ int run_board(const GlobalOptions& g, const BoardOptions& o, const std::string& 
       packages.push_back(*p);
     }
   }
-  auto adb = net::Adb::connect(o.adb_serial);
+  auto adb = o.network ? net::Adb::connect_network(o.link.target_ip) : net::Adb::connect(o.adb_serial);
   if (!adb) return r.error(adb.error());
   board::AdbBoardShell shell(*adb);
   log_info(g, "hitl board " + action + ": " + shell.describe());
@@ -253,21 +254,33 @@ void add_board_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->footer(
       "Every subcommand reads the board first (read-only), then runs its steps, saying each before it runs;\n"
       "--dry-run prints the steps with their exact board commands and changes nothing.\n"
-      "Exit: 0 done; 1 a step failed (what failed, what is already changed and how to undo it on stderr);\n"
-      "2 adb, the device or an input file is missing.");
+      "The board's commands go through adb: over USB (--adb, the default; --adb-serial S), or with -i IP and\n"
+      "no --adb over the network (adb connect IP:5555); start and status also talk MAVLink to PX4 at -i IP.\n"
+      "Exit: 0 done; 1 a step failed (what failed, what is already changed and how to undo it on stderr) or the\n"
+      "board could not be reached (no adb, no device); 2 bad usage, a missing or misnamed package file.");
   auto o = std::make_shared<BoardOptions>();
   auto add = [&](const char* name, const char* help) {
     auto* c = sub->add_subcommand(name, help);
-    c->add_flag("--adb", o->adb, "The board is on adb (the default and only way: its commands run through adb shell)")->group("Board");
-    c->add_option("--adb-serial", o->adb_serial, "Which adb device is the board, when several are attached")->group("Board");
-    c->callback([&options, &state, o, action = std::string(name)]() { state.exit_code = run_board(options, *o, action); });
+    c->add_flag("--adb", o->adb, "Run the board's commands through adb over USB (the default)")->group("Board");
+    c->add_option("--adb-serial", o->adb_serial, "Which adb device is the board, when several are attached (implies --adb)")->group("Board");
+    c->callback([&options, &state, o, c, action = std::string(name)]() {
+      const CLI::Option* ip = c->get_option_no_throw("--target-ip");
+      o->network = ip != nullptr && ip->count() > 0 && !o->adb && o->adb_serial.empty();
+      state.exit_code = run_board(options, *o, action);
+    });
     return c;
+  };
+  // -i IP for the subcommands without the MAVLink options: the board's adb over the network.
+  const auto add_ip = [&](CLI::App* c) {
+    c->add_option("-i,--target-ip", o->link.target_ip, "The board's IP: its commands through adb over the network (adb connect IP:5555)")
+        ->group("Board");
   };
   auto* install = add("install", "Push and install the HITL packages, write the vio-server config, set vision-hub's HITL keys (backup kept), enable the services");
   install->add_option("files", o->files, "Board .deb files to install instead of this build's (e.g. a voxl-fpv-px4 with HITL support)");
   install->add_option("--packages", o->packages_dir, "Where this build's board packages are (cpack's output, docs/board-packages.md)")
       ->capture_default_str();
   install->add_flag("--dry-run", o->dry_run, "Print the steps and their board commands; change nothing");
+  add_ip(install);
   install->footer("Examples:\n  hitl board install --packages /tmp/board --dry-run\n  hitl board install --packages /tmp/board");
 
   auto* start = add("start", "Start PX4 in HITL, wait for its HEARTBEAT and dsp_hitl, set the HITL parameters, start the VIO server and vision-hub");
@@ -275,10 +288,11 @@ void add_board_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   start->add_option("--wait", o->wait_s, "Seconds to wait for PX4's HEARTBEAT and dsp_hitl running")->capture_default_str()->check(positive_number());
   start->add_flag("--dry-run", o->dry_run, "Print the steps and their board commands; change nothing");
   add_link_options(start, o->link);
-  start->footer("Examples:\n  hitl board start\n  hitl board start -i 192.168.101.2 --reset-params");
+  start->footer("Examples:\n  hitl board start --adb -i 192.168.101.2\n  hitl board start -i 192.168.101.2 --reset-params");
 
   auto* stop = add("stop", "Stop vision-hub, the VIO server and PX4 in HITL");
   stop->add_flag("--dry-run", o->dry_run, "Print the steps and their board commands; change nothing");
+  add_ip(stop);
 
   auto* status = add("status", "Packages against this build, services, the config keys, the install record, PX4's HIL mode and the HITL parameters");
   add_link_options(status, o->link);
@@ -289,6 +303,7 @@ void add_board_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   restore->add_option("--params", o->params, "PX4's HITL parameter file: keep it, or remove it (the next start loads the HITL defaults)")
       ->capture_default_str()->check(CLI::IsMember({"keep", "remove"}));
   restore->add_flag("--dry-run", o->dry_run, "Print the steps and their board commands; change nothing");
+  add_ip(restore);
 }
 
 }  // namespace hitl::cli

@@ -42,11 +42,11 @@ _hitl_options() {
         'fly trajectory') echo '-h --help --rate --mode --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'board install') echo '-h --help --adb --adb-serial --packages --dry-run --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board install') echo '-h --help --adb --adb-serial --packages --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board start') echo '-h --help --adb --adb-serial --reset-params --wait --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'board stop') echo '-h --help --adb --adb-serial --dry-run --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board stop') echo '-h --help --adb --adb-serial --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board status') echo '-h --help --adb --adb-serial --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
         'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -164,6 +164,7 @@ _hitl_value() {
         'doctor|--listen') echo 'text' ;;
         'board install|--adb-serial') echo 'text' ;;
         'board install|--packages') echo 'text' ;;
+        'board install|-i'|'board install|--target-ip') echo 'text' ;;
         'board start|--adb-serial') echo 'text' ;;
         'board start|--wait') echo 'text' ;;
         'board start|--connect') echo 'text' ;;
@@ -174,6 +175,7 @@ _hitl_value() {
         'board start|--sysid') echo 'text' ;;
         'board start|--timeout') echo 'text' ;;
         'board stop|--adb-serial') echo 'text' ;;
+        'board stop|-i'|'board stop|--target-ip') echo 'text' ;;
         'board status|--adb-serial') echo 'text' ;;
         'board status|--connect') echo 'text' ;;
         'board status|-i'|'board status|--target-ip') echo 'text' ;;
@@ -184,6 +186,7 @@ _hitl_value() {
         'board status|--timeout') echo 'text' ;;
         'board restore|--adb-serial') echo 'text' ;;
         'board restore|--params') echo 'choice keep remove' ;;
+        'board restore|-i'|'board restore|--target-ip') echo 'text' ;;
         'bridge|-i'|'bridge|--target-ip') echo 'text' ;;
         'bridge|--port') echo 'text' ;;
         'bridge|--local-port') echo 'text' ;;

@@ -71,7 +71,7 @@ class BoardE2E : public ::testing::Test {
     return board(a);
   }
   std::vector<std::string> link_args(uint16_t gcs) {
-    return {"-i", "127.0.0.1", "--port", std::to_string(gcs), "--local-port", std::to_string(local_), "--session-port",
+    return {"--adb", "-i", "127.0.0.1", "--port", std::to_string(gcs), "--local-port", std::to_string(local_), "--session-port",
             std::to_string(test::free_udp_port())};
   }
   std::string version_, debs_;
@@ -221,6 +221,30 @@ TEST_F(BoardE2E, JsonIsStatusObjectsPerStepAndOneSummaryLast) {
   EXPECT_EQ(summary["ok"], true);
   EXPECT_EQ(summary["steps_done"], 6);
   EXPECT_EQ(fake_.board_file("/data/hitl-board/voxl-vision-hub.conf.orig"), kShippedVisionHub);
+}
+
+// -i IP without --adb: adb over the network (adb connect IP:5555, then that device).
+TEST(BoardNetworkE2E, DashIWithoutAdbConnectsOverTheNetworkAndRunsThereOrSaysHowToListen) {
+  test::FakeAdb fake({.devices = "127.0.0.1:5555 device"});
+  fake.make_board(kShippedVisionHub);
+  const auto r = test::run_hitl({"board", "stop", "-i", "127.0.0.1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto calls = fake.calls();
+  ASSERT_FALSE(calls.empty());
+  EXPECT_EQ(calls[0], "connect 127.0.0.1:5555");
+  EXPECT_EQ(fake.find_call("-s 127.0.0.1:5555 shell systemctl stop voxl-vision-hub"), static_cast<int>(calls.size()) - 1) << calls.back();
+  EXPECT_EQ(fake.find_call("devices"), -1) << "no USB device lookup";
+  ScopedEnv refuse("FAKE_ADB_CONNECT", "refuse");
+  const auto refused = test::run_hitl({"board", "status", "-i", "127.0.0.1"});
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("adb connect 127.0.0.1:5555: failed to connect"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("adb tcpip 5555"), std::string::npos) << refused.err;
+  // --adb with -i: the board's commands over USB, -i only for MAVLink.
+  test::FakeAdb usb({});
+  usb.make_board(kShippedVisionHub);
+  EXPECT_EQ(test::run_hitl({"board", "stop", "--adb", "-i", "127.0.0.1"}).exit_code, 0);
+  EXPECT_EQ(usb.find_call("connect"), -1);
+  EXPECT_EQ(usb.find_call("-s FAKE0001 shell systemctl stop voxl-vision-hub"), static_cast<int>(usb.calls().size()) - 1);
 }
 
 TEST_F(BoardE2E, InstallWithoutThisBuildsPackagesNamesTheFileItLookedFor) {

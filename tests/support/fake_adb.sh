@@ -9,6 +9,7 @@
 #   FAKE_ADB_ROOT        the device's file system root for pushed files, and the relay's log
 #   FAKE_ADB_RELAY_PORT  the TCP port the relay listens on here (what `forward` prints)
 #   FAKE_ADB_RELAY_ARGS  more relay options for this machine (its UDP targets, source ports)
+#   FAKE_ADB_CONNECT     "refuse": `adb connect HOST:PORT` fails as adb does (exit 0, "failed to connect")
 #
 # `shell` commands see the board's files under the device root: /etc/modalai, /data and
 # /tmp/hitl-board in a command are rewritten to $FAKE_ADB_ROOT/etc/modalai, ... (hitl board's
@@ -62,6 +63,13 @@ case "${1:-}" in
       [ -n "${s:-}" ] && printf '%s\t%s\n' "$s" "$st"
     done
     echo
+    ;;
+  connect)
+    if [ "${FAKE_ADB_CONNECT:-}" = refuse ]; then
+      echo "failed to connect to '${2:-}': Connection refused"
+    else
+      echo "connected to ${2:-}"
+    fi
     ;;
   forward)
     check_device
