@@ -312,6 +312,22 @@ Expected<BoardPlan> make_restore_plan(const BoardSurvey& survey, const RestoreOp
   plan.steps.push_back(stop);
 
   const bool removing = !options.keep_packages;
+  bool vio_removed = false;
+  if (removing) {
+    const auto it = before->packages.find(kVioServerService);
+    vio_removed = it == before->packages.end() || it->second.empty();
+  }
+  // Before the purge, while every unit is still there (a removed unit's enable link would stay).
+  BoardStep enabled;
+  enabled.name = "enable and disable the services as they were";
+  for (const auto& was : before->services)
+    if (survey.service(was.name).enabled != was.enabled)
+      enabled.actions.push_back(BoardAction::shell(std::string("systemctl ") + (was.enabled ? "enable " : "disable ") + was.name));
+  if (enabled.actions.empty()) {
+    enabled.name = "the services are enabled as they were";
+    enabled.changes_board = false;
+  }
+  plan.steps.push_back(enabled);
   if (removing) {
     BoardStep purge;
     purge.name = "remove the HITL packages";
@@ -348,28 +364,18 @@ Expected<BoardPlan> make_restore_plan(const BoardSurvey& survey, const RestoreOp
   }
   plan.steps.push_back(files);
 
-  BoardStep services;
-  services.name = "the services as they were";
-  bool vio_removed = false;
-  if (removing) {
-    const auto it = before->packages.find(kVioServerService);
-    vio_removed = it == before->packages.end() || it->second.empty();
-  }
+  BoardStep running;
+  running.name = "start the services that were running";
   for (const auto& was : before->services) {
     if (was.name == kVioServerService && vio_removed) continue;  // its unit left with the package
-    if (survey.service(was.name).enabled != was.enabled)
-      services.actions.push_back(BoardAction::shell(std::string("systemctl ") + (was.enabled ? "enable " : "disable ") + was.name));
-  }
-  for (const auto& was : before->services) {
-    if (was.name == kVioServerService && vio_removed) continue;
     const bool active_now = survey.service(was.name).active && was.name == kPx4Service;  // step 1 stopped the others
-    if (was.active && !active_now) services.actions.push_back(BoardAction::shell("systemctl start " + was.name));
+    if (was.active && !active_now) running.actions.push_back(BoardAction::shell("systemctl start " + was.name));
   }
-  if (services.actions.empty()) {
-    services.name = "the services are as they were";
-    services.changes_board = false;
+  if (running.actions.empty()) {
+    running.name = "no service to start: none of them was running";
+    running.changes_board = false;
   }
-  plan.steps.push_back(services);
+  plan.steps.push_back(running);
 
   if (options.remove_params) {
     BoardStep params;

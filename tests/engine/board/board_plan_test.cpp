@@ -132,7 +132,7 @@ TEST(RestorePlan, BackFromTheRecord) {
   ASSERT_TRUE(plan) << plan.error().message;
   EXPECT_EQ(shell_commands(*plan),
             (std::vector<std::string>{"systemctl stop voxl-vision-hub", "systemctl stop voxl-hitl-vio-server", "systemctl stop voxl-px4-hitl",
-                                      "dpkg --purge voxl-hitl-vio-server voxl-hitl-px4-scripts",
+                                      "systemctl disable voxl-hitl-vio-server", "dpkg --purge voxl-hitl-vio-server voxl-hitl-px4-scripts",
                                       "cp -p /data/hitl-board/voxl-vision-hub.conf.orig /etc/modalai/voxl-vision-hub.conf", "systemctl start voxl-px4",
                                       "systemctl start voxl-vision-hub", "rm -rf /data/hitl-board"}));
   auto keep = make_restore_plan(board, {true, true});
