@@ -64,14 +64,14 @@ case "$me" in
       reset-failed) [ -e "$state/services/$1" ] || { echo "Unit $1.service not loaded." >&2; exit 1; } ;;
       is-enabled)
         s="$(svc "$1")" || { echo "Failed to get unit file state for $1.service: No such file or directory" >&2; exit 1; }
-        set -- $s; echo "$1"; [ "$1" = enabled ] ;;
+        read -r en _ <<< "$s"; echo "$en"; [ "$en" = enabled ] ;;
       is-active)
         s="$(svc "$1")" || { echo inactive; exit 3; }
-        set -- $s; echo "$2"; [ "$2" = active ] || exit 3 ;;
+        read -r _ ac <<< "$s"; echo "$ac"; [ "$ac" = active ] || exit 3 ;;
       enable|disable|start|stop|restart)
         for name in "$@"; do
           s="$(svc "$name")" || { echo "Failed to $op $name.service: Unit $name.service not found." >&2; exit 5; }
-          set -- $s; en="$1"; ac="$2"
+          read -r en ac <<< "$s"
           case "$op" in
             enable) en=enabled ;; disable) en=disabled ;; start|restart) ac=active ;; stop) ac=inactive ;;
           esac
