@@ -1,9 +1,12 @@
 #include "engine/board/board_shell.h"
 
 namespace hitl::board {
+namespace {
 
 /// dpkg over USB takes a while; a PX4 start under systemd-run returns at once.
-inline constexpr int kBoardCommandTimeout_ms = 120000;
+constexpr int kBoardCommandTimeout_ms = 120000;
+
+}  // namespace
 
 Expected<net::ProgramOutput> AdbBoardShell::run(const std::string& command) {
   return adb_.shell(command, kBoardCommandTimeout_ms);

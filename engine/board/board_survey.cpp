@@ -9,8 +9,13 @@ namespace {
 
 /// Exit code of the file reads when the file does not exist.
 constexpr int kAbsentExit = 3;
+/// A configuration file or the record larger than this is not one: the board sends one byte more
+/// at most (head -c), so a huge file never fills the host's memory.
+constexpr std::size_t kMaxFileBytes = 1 << 20;
 
-std::string read_file_command(const std::string& path) { return "test -e " + path + " || exit 3; cat " + path; }
+std::string read_file_command(const std::string& path) {
+  return "test -e " + path + " || exit 3; head -c " + std::to_string(kMaxFileBytes + 1) + " " + path;
+}
 
 std::string services_command() {
   std::string list;
@@ -30,6 +35,8 @@ Expected<std::optional<std::string>> read_file(BoardShell& shell, const std::str
   if (!out) return out.error();
   if (out->exit_code == kAbsentExit) return std::optional<std::string>{};
   if (out->exit_code != 0) return Error{"cannot read " + path + " on the board (exit " + std::to_string(out->exit_code) + "): " + out->err};
+  if (out->out.size() > kMaxFileBytes)
+    return Error::input(path + " on the board is over " + std::to_string(kMaxFileBytes / 1024) + " KiB: not a configuration file hitl edits");
   return std::optional<std::string>{out->out};
 }
 

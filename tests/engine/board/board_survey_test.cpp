@@ -30,6 +30,18 @@ TEST(BoardSurvey, ReadsPackagesServicesAndFiles) {
   for (const auto& line : shell.log) EXPECT_EQ(line.find("rm "), std::string::npos) << "the survey only reads: " << line;
 }
 
+TEST(BoardSurvey, AHugeConfigurationFileIsRefusedNotRead) {
+  test::ScriptedShell shell;
+  shell.answers["test -e /etc/modalai/voxl-vision-hub.conf"] = {0, std::string((1 << 20) + 1, ' '), ""};
+  auto survey = survey_board(shell);
+  ASSERT_FALSE(survey);
+  EXPECT_EQ(survey.error().kind, ErrorKind::Input);
+  EXPECT_NE(survey.error().message.find("over 1024 KiB"), std::string::npos) << survey.error().message;
+  bool bounded = false;
+  for (const auto& line : shell.log) bounded = bounded || line.find("head -c 1048577 /etc/modalai/voxl-vision-hub.conf") != std::string::npos;
+  EXPECT_TRUE(bounded);
+}
+
 TEST(BoardState, RoundTripsAndRejectsWhatInstallNeverWrites) {
   BoardSurvey survey;
   survey.installed = {{"voxl-hitl-vio-server", ""}, {"voxl-hitl-px4-scripts", "0.0.9"}};
