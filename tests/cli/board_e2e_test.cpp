@@ -314,6 +314,13 @@ TEST_F(BoardE2E, StartWaitsForPx4SetsTheParametersRestartsPx4ForSysHitlThenStart
   EXPECT_TRUE(j["params"]["wrong"].empty()) << j["params"];
   EXPECT_EQ(j["ready"], true) << j["not_ready"];
 
+  const auto text = board(args);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("/etc/modalai/voxl-vision-hub.conf: en_vio false, vio_pipe \"qvio\", en_hitl true, offboard_mode \"vfc\"\n"),
+            std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("PX4: HEARTBEAT, HIL mode, dsp_hitl running\n"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("\nready for hitl sim\n"), std::string::npos) << text.out;
+
   const auto stop = board({"stop"});
   ASSERT_EQ(stop.exit_code, 0) << stop.err;
   const auto after = fake_.board_calls();
