@@ -4,6 +4,7 @@
 // step, the board's output, what is already changed and how to undo it.
 #include <iostream>
 
+#include "cli/adb_options.h"
 #include "cli/commands.h"
 #include "cli/link_options.h"
 #include "cli/number_check.h"
@@ -21,6 +22,8 @@ namespace {
 struct BoardOptions {
   bool adb = false;                 ///< --adb: over USB (the default)
   bool network = false;             ///< -i given without --adb/--adb-serial: adb over the network (adb connect IP:5555)
+  bool link_given = false;          ///< -i or --connect given: PX4's MAVLink there; else through the adb tunnel
+  std::string px4_unreachable;      ///< status: why there is no way to PX4 (the tunnel did not open)
   std::string adb_serial;           ///< --adb-serial S
   bool dry_run = false;             ///< --dry-run
   std::vector<std::string> files;   ///< install: .deb files
@@ -158,7 +161,10 @@ std::string keys_text(const board::ConfigKeys& c) {
 }
 
 int run_status(const GlobalOptions& g, const BoardOptions& o, const Reporter& r, board::BoardShell& shell, const board::BoardSurvey& survey) {
-  const auto s = board::make_board_status(survey, kVersion, board::read_px4_status(o.link));
+  board::Px4Status px4;
+  if (o.px4_unreachable.empty()) px4 = board::read_px4_status(o.link);
+  else px4.link_error = o.px4_unreachable;
+  const auto s = board::make_board_status(survey, kVersion, px4);
   if (g.json) {
     nlohmann::json packages = nlohmann::json::array(), services = nlohmann::json::object(), wrong = nlohmann::json::array(),
                    absent = nlohmann::json::array();
@@ -236,14 +242,30 @@ int run_board(const GlobalOptions& g, const BoardOptions& o, const std::string& 
   log_info(g, "hitl board " + action + ": " + shell.describe());
   auto survey = board::survey_board(shell);
   if (!survey) return r.error(survey.error().prefixed("reading the board: "));
-  if (action == "status") return run_status(g, o, r, shell, *survey);
+  // Over USB with no -i/--connect, PX4's GCS instance is reached through the adb tunnel
+  // (hitl-adb-relay, docs/adb.md), as hitl bridge --adb does; a dry run opens nothing.
+  BoardOptions run = o;
+  std::unique_ptr<net::AdbTunnel> tunnel;
+  if ((action == "status" || (action == "start" && !o.dry_run)) && !o.network && !o.link_given) {
+    auto opened = open_adb_tunnel(g, "board " + action, AdbOptions{true, o.adb_serial, ""});
+    if (!opened) {
+      if (action == "start")
+        return r.error(opened.error().prefixed("reaching PX4 through adb (nothing was changed; or give -i IP / --connect): "));
+      run.px4_unreachable = "no way to PX4 through adb: " + opened.error().message + " (or give -i IP / --connect)";
+    } else {
+      tunnel = std::move(opened.value());
+      run.link.connect = "udp:" + tunnel->local_endpoint(adb::Channel::Gcs).to_string();
+      log_info(g, "hitl board " + action + ": PX4 through " + tunnel->describe());
+    }
+  }
+  if (action == "status") return run_status(g, run, r, shell, *survey);
   Expected<board::BoardPlan> plan = Error{"unknown action " + action};
   if (action == "install") plan = board::make_install_plan(*survey, {packages});
   if (action == "start") plan = board::make_start_plan(*survey, {o.reset_params, o.wait_s});
   if (action == "stop") plan = board::make_stop_plan(*survey);
   if (action == "restore") plan = board::make_restore_plan(*survey, {o.keep, o.params == "remove"});
   if (!plan) return r.error(plan.error());
-  return run_plan_command(g, o, r, shell, *plan);
+  return run_plan_command(g, run, r, shell, *plan);
 }
 
 }  // namespace
@@ -265,7 +287,9 @@ void add_board_command(CLI::App& app, GlobalOptions& options, RunState& state) {
     c->add_option("--adb-serial", o->adb_serial, "Which adb device is the board, when several are attached (implies --adb)")->group("Board");
     c->callback([&options, &state, o, c, action = std::string(name)]() {
       const CLI::Option* ip = c->get_option_no_throw("--target-ip");
+      const CLI::Option* connect = c->get_option_no_throw("--connect");
       o->network = ip != nullptr && ip->count() > 0 && !o->adb && o->adb_serial.empty();
+      o->link_given = (ip != nullptr && ip->count() > 0) || (connect != nullptr && connect->count() > 0);
       state.exit_code = run_board(options, *o, action);
     });
     return c;

@@ -223,6 +223,43 @@ TEST_F(BoardE2E, JsonIsStatusObjectsPerStepAndOneSummaryLast) {
   EXPECT_EQ(fake_.board_file("/data/hitl-board/voxl-vision-hub.conf.orig"), kShippedVisionHub);
 }
 
+// USB alone (no -i, no --connect): start and status reach PX4 through the adb tunnel's GCS channel,
+// the real hitl-adb-relay (pushed, as hitl sim --adb does) forwarding to hitl target.
+TEST(BoardTunnelE2E, WithoutDashIStartAndStatusReachPx4ThroughTheAdbTunnel) {
+  const uint16_t gcs = test::free_udp_port();
+  test::Process px4({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(test::free_udp_port()),
+                     "--gcs-port", std::to_string(gcs), "--vio-port", "0"});
+  ASSERT_TRUE(px4.wait_for_stderr("EMULATED", 10s)) << px4.err();
+  test::FakeAdb fake({.relay_args = "--gcs-port " + std::to_string(gcs) + " --gcs-source-port 0 --hil-port " +
+                                    std::to_string(test::free_udp_port()) + " --hil-source-port 0 --vio-port " + std::to_string(test::free_udp_port())});
+  fake.make_board(kShippedVisionHub);
+  const auto debs = test::temp_dir();
+  std::vector<std::string> install{"board", "install"};
+  for (const char* name : {"voxl-hitl-vio-server_0.1.0_arm64.deb", "voxl-hitl-px4-scripts_0.1.0_arm64.deb"}) {
+    std::ofstream(debs + "/" + name) << "a stand-in\n";
+    install.push_back(debs + "/" + name);
+  }
+  ASSERT_EQ(test::run_hitl(install).exit_code, 0);
+  const std::vector<std::string> ports{"--local-port", std::to_string(test::free_udp_port()), "--session-port",
+                                       std::to_string(test::free_udp_port())};
+  auto args = std::vector<std::string>{"board", "start", "--wait", "20"};
+  args.insert(args.end(), ports.begin(), ports.end());
+  const auto start = test::run_hitl(args, 90s);
+  EXPECT_EQ(start.exit_code, 0) << start.out << start.err;
+  EXPECT_NE(start.err.find("hitl board start: PX4 through"), std::string::npos) << start.err;
+  EXPECT_NE(start.out.find("-> PX4 is up and dsp_hitl is running"), std::string::npos) << start.out;
+  args = {"--json", "board", "status"};
+  args.insert(args.end(), ports.begin(), ports.end());
+  const auto status = test::run_hitl(args, 90s);
+  ASSERT_EQ(status.exit_code, 0) << status.err;
+  const auto j = nlohmann::json::parse(status.out);
+  EXPECT_EQ(j["px4"]["heartbeat"], true) << j["px4"];
+  EXPECT_EQ(j["px4"]["dsp_hitl_running"], true);
+  EXPECT_TRUE(fake.stop_relays());
+  px4.signal(SIGINT);
+  px4.wait(10s);
+}
+
 // -i IP without --adb: adb over the network (adb connect IP:5555, then that device).
 TEST(BoardNetworkE2E, DashIWithoutAdbConnectsOverTheNetworkAndRunsThereOrSaysHowToListen) {
   test::FakeAdb fake({.devices = "127.0.0.1:5555 device"});
