@@ -277,7 +277,8 @@ void add_board_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       "Every subcommand reads the board first (read-only), then runs its steps, saying each before it runs;\n"
       "--dry-run prints the steps with their exact board commands and changes nothing.\n"
       "The board's commands go through adb: over USB (--adb, the default; --adb-serial S), or with -i IP and\n"
-      "no --adb over the network (adb connect IP:5555); start and status also talk MAVLink to PX4 at -i IP.\n"
+      "no --adb over the network (adb connect IP:5555). start and status also talk MAVLink to PX4: at -i IP\n"
+      "(or --connect), else through the adb tunnel (hitl-adb-relay on the board, as hitl bridge --adb).\n"
       "Exit: 0 done; 1 a step failed (what failed, what is already changed and how to undo it on stderr) or the\n"
       "board could not be reached (no adb, no device); 2 bad usage, a missing or misnamed package file.");
   auto o = std::make_shared<BoardOptions>();
@@ -312,7 +313,7 @@ void add_board_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   start->add_option("--wait", o->wait_s, "Seconds to wait for PX4's HEARTBEAT and dsp_hitl running")->capture_default_str()->check(positive_number());
   start->add_flag("--dry-run", o->dry_run, "Print the steps and their board commands; change nothing");
   add_link_options(start, o->link);
-  start->footer("Examples:\n  hitl board start --adb -i 192.168.101.2\n  hitl board start -i 192.168.101.2 --reset-params");
+  start->footer("Examples:\n  hitl board start\n  hitl board start --adb -i 192.168.101.2 --reset-params");
 
   auto* stop = add("stop", "Stop vision-hub, the VIO server and PX4 in HITL");
   stop->add_flag("--dry-run", o->dry_run, "Print the steps and their board commands; change nothing");
