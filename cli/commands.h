@@ -20,6 +20,7 @@ void add_arm_commands(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_shell_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_fly_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_doctor_command(CLI::App& app, GlobalOptions& options, RunState& state);
+void add_board_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_completion_command(CLI::App& app, GlobalOptions& options, RunState& state);

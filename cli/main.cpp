@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   add_shell_command(app, options, state);
   add_fly_command(app, options, state);
   add_doctor_command(app, options, state);
+  add_board_command(app, options, state);
   add_bridge_command(app, options, state);
   add_demo_command(app, options, state);
   add_report_command(app, options, state);

@@ -110,6 +110,23 @@ Expected<Adb> Adb::connect(std::string_view serial) {
   return Adb(listed->adb_path, *chosen);
 }
 
+bool adb_connected(std::string_view output) {
+  return output.find("connected to ") != std::string_view::npos && output.find("failed to connect") == std::string_view::npos &&
+         output.find("cannot connect") == std::string_view::npos;
+}
+
+Expected<Adb> Adb::connect_network(const std::string& host, uint16_t port) {
+  auto path = find_adb();
+  if (!path) return path.error();
+  const std::string target = host + ":" + std::to_string(port);
+  auto out = run_program(*path, {"connect", target}, kAdbCommandTimeout_ms);
+  if (!out) return out.error();
+  if (out->exit_code != 0 || !adb_connected(out->out + out->err))
+    return Error{"adb connect " + target + ": " + adb_message(*out) + " (the board listens for adb over the network after `adb tcpip " +
+                 std::to_string(kAdbTcpPort) + "` over USB; or use --adb for USB)"};
+  return Adb(*path, target);
+}
+
 Expected<ProgramOutput> Adb::run(const std::vector<std::string>& args, int timeout_ms) const {
   std::vector<std::string> full{"-s", serial_};
   full.insert(full.end(), args.begin(), args.end());

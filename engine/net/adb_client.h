@@ -48,11 +48,21 @@ Expected<AdbDevices> list_adb_devices();
 /// one. The Error says to plug in the board, to pick one with --adb-serial, or what the state means.
 Expected<std::string> choose_adb_device(const std::vector<AdbDevice>& devices, std::string_view serial);
 
+/// adbd's TCP port on a board reached over the network (`adb tcpip 5555` once over USB).
+inline constexpr uint16_t kAdbTcpPort = 5555;
+
+/// Whether `adb connect HOST:PORT`'s output says it is connected ("connected to ...", "already
+/// connected to ..."); adb exits 0 on "failed to connect" too, so its words decide.
+bool adb_connected(std::string_view output);
+
 /// adb bound to one device: every call runs `adb -s SERIAL ...`.
 class Adb {
  public:
   /// Finds adb, lists the devices and picks one (choose_adb_device).
   static Expected<Adb> connect(std::string_view serial);
+  /// Over the network: `adb connect HOST:PORT`, then the device HOST:PORT. The Error says what adb
+  /// answered and how to make the board listen (`adb tcpip 5555` over USB) or to use USB instead.
+  static Expected<Adb> connect_network(const std::string& host, uint16_t port = kAdbTcpPort);
   Adb(std::string adb_path, std::string serial) : path_(std::move(adb_path)), serial_(std::move(serial)) {}
 
   const std::string& serial() const { return serial_; }

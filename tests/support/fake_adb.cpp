@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -35,8 +36,9 @@ bool alive(pid_t pid) {
 
 FakeAdb::FakeAdb(const Options& options) : dir_(temp_dir()), old_path_(std::getenv("PATH") ? std::getenv("PATH") : "") {
   relay_port_ = options.relay_port ? options.relay_port : free_udp_port();
+  root_ = dir_ + "/root";
   ::mkdir((dir_ + "/bin").c_str(), 0755);
-  ::mkdir((dir_ + "/root").c_str(), 0755);
+  ::mkdir(root_.c_str(), 0755);
   ::mkdir((dir_ + "/root/bin").c_str(), 0755);
   if (::symlink(HITL_FAKE_ADB_SCRIPT, (dir_ + "/bin/adb").c_str()) != 0) throw std::runtime_error("symlink failed");
   ::setenv("FAKE_ADB_LOG", (dir_ + "/calls.log").c_str(), 1);
@@ -93,6 +95,49 @@ bool FakeAdb::stop_relays() {
     }
   }
   return all_stopped;
+}
+
+void FakeAdb::make_board(const std::string& vision_hub_conf) const {
+  for (const char* tool : {"dpkg", "dpkg-query", "systemctl", "systemd-run", "journalctl", "voxl-px4-hitl"})
+    if (::symlink(HITL_FAKE_BOARD_SCRIPT, (root_ + "/bin/" + tool).c_str()) != 0) throw std::runtime_error("symlink failed");
+  std::filesystem::create_directories(root_ + "/var/fake-board/services");
+  std::filesystem::create_directories(root_ + "/var/fake-board/packages");
+  std::filesystem::create_directories(root_ + "/etc/modalai");
+  for (const char* service : {"voxl-px4", "voxl-vision-hub"}) std::ofstream(root_ + "/var/fake-board/services/" + service) << "enabled active\n";
+  if (!vision_hub_conf.empty()) std::ofstream(root_ + "/etc/modalai/voxl-vision-hub.conf", std::ios::binary) << vision_hub_conf;
+  std::ofstream(root_ + "/board.log");
+}
+
+std::vector<std::string> FakeAdb::board_calls() const {
+  std::vector<std::string> lines;
+  std::istringstream in(read_file(root_ + "/board.log"));
+  std::string line;
+  while (std::getline(in, line)) {
+    for (auto at = line.find(root_); at != std::string::npos; at = line.find(root_)) line.erase(at, root_.size());
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+std::string FakeAdb::board_file(const std::string& path) const {
+  std::ifstream in(root_ + path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+bool FakeAdb::board_file_exists(const std::string& path) const { return std::filesystem::exists(root_ + path); }
+
+std::string FakeAdb::board_service(const std::string& name) const {
+  std::string s = read_file(root_ + "/var/fake-board/services/" + name);
+  while (!s.empty() && s.back() == '\n') s.pop_back();
+  return s;
+}
+
+std::string FakeAdb::board_package(const std::string& name) const {
+  std::string s = read_file(root_ + "/var/fake-board/packages/" + name);
+  while (!s.empty() && s.back() == '\n') s.pop_back();
+  return s;
 }
 
 NoAdbOnPath::NoAdbOnPath() : old_path_(std::getenv("PATH") ? std::getenv("PATH") : "") {

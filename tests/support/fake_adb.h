@@ -29,11 +29,25 @@ class FakeAdb {
   /// The relays it started (pids from their "listening ... (pid N" line); stops them and waits.
   bool stop_relays();
   std::string relay_log() const;
+  /// Makes the device a VOXL2 for hitl board (fake_board.sh): dpkg, dpkg-query, systemctl,
+  /// systemd-run, journalctl and voxl-px4-hitl on its PATH; ModalAI's voxl-px4 and voxl-vision-hub
+  /// enabled and running; `vision_hub_conf` as /etc/modalai/voxl-vision-hub.conf (none when empty).
+  void make_board(const std::string& vision_hub_conf) const;
+  /// The board programs' calls so far, one line each, the device root taken out of paths.
+  std::vector<std::string> board_calls() const;
+  /// A file on the device ("/etc/modalai/voxl-vision-hub.conf"); empty when absent.
+  std::string board_file(const std::string& path) const;
+  bool board_file_exists(const std::string& path) const;
+  /// "enabled active" (the stand-in systemctl's state), empty when the unit does not exist.
+  std::string board_service(const std::string& name) const;
+  std::string board_package(const std::string& name) const;
+  const std::string& root() const { return root_; }
   uint16_t relay_port() const { return relay_port_; }
   const std::string& dir() const { return dir_; }
 
  private:
   std::string dir_;
+  std::string root_;
   std::string old_path_;
   uint16_t relay_port_ = 0;
 };

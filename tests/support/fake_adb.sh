@@ -9,6 +9,11 @@
 #   FAKE_ADB_ROOT        the device's file system root for pushed files, and the relay's log
 #   FAKE_ADB_RELAY_PORT  the TCP port the relay listens on here (what `forward` prints)
 #   FAKE_ADB_RELAY_ARGS  more relay options for this machine (its UDP targets, source ports)
+#   FAKE_ADB_CONNECT     "refuse": `adb connect HOST:PORT` fails as adb does (exit 0, "failed to connect")
+#
+# `shell` commands see the board's files under the device root: /etc/modalai, /data and
+# /tmp/hitl-board in a command are rewritten to $FAKE_ADB_ROOT/etc/modalai, ... (hitl board's
+# files); the stand-in board programs (fake_board.sh: dpkg, systemctl, ...) sit in $FAKE_ADB_ROOT/bin.
 set -u
 log="${FAKE_ADB_LOG:?FAKE_ADB_LOG must name the file that records the calls}"
 printf '%s\n' "$*" >> "$log"
@@ -59,6 +64,13 @@ case "${1:-}" in
     done
     echo
     ;;
+  connect)
+    if [ "${FAKE_ADB_CONNECT:-}" = refuse ]; then
+      echo "failed to connect to '${2:-}': Connection refused"
+    else
+      echo "connected to ${2:-}"
+    fi
+    ;;
   forward)
     check_device
     if [ "${2:-}" = "--remove" ]; then exit 0; fi
@@ -80,6 +92,9 @@ case "${1:-}" in
     shift
     cmd="$*"
     cmd="${cmd//\/tmp\/hitl-adb-relay/$root/tmp/hitl-adb-relay}"
+    cmd="${cmd//\/tmp\/hitl-board/$root/tmp/hitl-board}"
+    cmd="${cmd//\/etc\/modalai/$root/etc/modalai}"
+    cmd="${cmd//\/data\//$root/data/}"
     if [[ "$cmd" == *hitl-adb-relay*--daemon* ]]; then
       cmd="$cmd --port ${FAKE_ADB_RELAY_PORT:?} --log $root/relay.log ${FAKE_ADB_RELAY_ARGS:-}"
     fi

@@ -82,6 +82,14 @@ TEST(AdbDevices, ChoosesTheOnlyReadyOneOrSaysWhatToDo) {
   EXPECT_NE(unready.error().message.find("udev rule"), std::string::npos);
 }
 
+TEST(AdbDevices, ConnectSaysConnectedOnlyWhenItIs) {
+  EXPECT_TRUE(adb_connected("connected to 192.168.101.2:5555\n"));
+  EXPECT_TRUE(adb_connected("already connected to 192.168.101.2:5555\n"));
+  EXPECT_FALSE(adb_connected("failed to connect to '192.168.101.2:5555': Connection refused\n"));
+  EXPECT_FALSE(adb_connected("cannot connect to 192.168.101.2:5555: No route to host (113)\n"));
+  EXPECT_FALSE(adb_connected(""));
+}
+
 TEST(AdbProgram, MissingAdbNamesTheDebianPackage) {
   const auto empty_dir = test::temp_dir();
   ScopedPath path(empty_dir);
