@@ -83,7 +83,8 @@ int run_plan_command(const GlobalOptions& g, const BoardOptions& o, const Report
       print_lines(board::plan_lines(plan));
       std::cout << "dry run: nothing was changed on the board\n";
     }
-    r.summary({{"ok", true}, {"dry_run", true}, {"board", shell.describe()}, {"notes", plan.notes}, {"steps", plan_json(plan)}});
+    r.summary({{"ok", true}, {"dry_run", true}, {"board", shell.describe()}, {"notes", plan.notes}, {"steps", plan.steps.size()},
+               {"plan", plan_json(plan)}, {"undo_command", plan.undo_command}});
     return kExitOk;
   }
   if (!g.json)

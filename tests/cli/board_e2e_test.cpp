@@ -408,7 +408,9 @@ TEST_F(BoardE2E, StartAndStopAndRestoreDryRunsChangeNothing) {
   const auto json = board({"start", "--dry-run", "--reset-params"}, true);
   const auto j = nlohmann::json::parse(json.out);
   EXPECT_EQ(j["dry_run"], true);
-  EXPECT_NE(j["steps"][1]["actions"][0].get<std::string>().find("--reset-params"), std::string::npos) << j["steps"];
+  EXPECT_EQ(j["steps"], j["plan"].size());
+  EXPECT_NE(j["plan"][1]["actions"][0].get<std::string>().find("--reset-params"), std::string::npos) << j["plan"];
+  EXPECT_EQ(j["plan"][1]["undo"][0], "systemctl stop voxl-px4-hitl");
 }
 
 }  // namespace
