@@ -100,8 +100,8 @@ class Bridge {
       if (!cp) return cp.error().suffixed(" (is a hitl sim or another hitl bridge running? --clients 0 disables)");
       clients_.emplace(std::move(cp.value()));
       clients_link_ = router_.add_link(
-          "clients", [this](std::span<const uint8_t> bytes, const std::optional<net::SocketAddress>& except) {
-            clients_->broadcast(bytes, except);
+          "clients", [this](std::span<const uint8_t> bytes, const router::Delivery& to) {
+            clients_->broadcast(bytes, to.except, to.only);
           },
           /*hub=*/true);
     }

@@ -52,7 +52,8 @@ std::size_t ClientPort::receive_some(std::size_t max_datagrams, const std::funct
   return read;
 }
 
-void ClientPort::broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except) {
+void ClientPort::broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except,
+                           const std::vector<SocketAddress>& only) {
   if (!endpoint_ || clients_.empty()) return;
   Queue& queue = except ? forwarded_ : own_;
   if (queue.frames.size() >= limits_.max_queued_frames || bytes.size() > kMaxFrameBytes) {
@@ -63,6 +64,7 @@ void ClientPort::broadcast(std::span<const uint8_t> bytes, const std::optional<S
   std::memcpy(f.bytes.data(), bytes.data(), bytes.size());
   f.size = bytes.size();
   f.except = except;
+  f.only = only;
 }
 
 void ClientPort::forget_silent_clients() {
@@ -82,6 +84,7 @@ void ClientPort::send_from(Queue& queue, std::size_t& budget) {
     while (queue.next_client < clients_.size() && budget > 0) {
       const Client& c = clients_[queue.next_client++];
       if (f.except && c.address == *f.except) continue;
+      if (!f.only.empty() && std::find(f.only.begin(), f.only.end(), c.address) == f.only.end()) continue;
       --budget;
       if (endpoint_->send_to(c.address, {f.bytes.data(), f.size})) ++stats_.datagrams_out;
       else ++stats_.send_errors;

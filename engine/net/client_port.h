@@ -57,8 +57,10 @@ class ClientPort {
   /// (learning it). Returns how many were read, refused ones included.
   std::size_t receive_some(std::size_t max_datagrams, const std::function<void(const Datagram&)>& on_datagram);
   /// Queues one frame for every live client and fixed peer except `except` (a client's own frame
-  /// going to the others when set); pump() sends it.
-  void broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except = std::nullopt);
+  /// going to the others when set), or, when `only` is not empty, for those of them in `only` (a
+  /// targeted frame: the clients that showed its target); pump() sends it.
+  void broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except = std::nullopt,
+                 const std::vector<SocketAddress>& only = {});
   /// Forgets silent clients and sends at most limits.max_datagrams_out queued datagrams.
   void pump();
 
@@ -80,6 +82,7 @@ class ClientPort {
     std::array<uint8_t, kMaxFrameBytes> bytes;
     std::size_t size = 0;
     std::optional<SocketAddress> except;
+    std::vector<SocketAddress> only;  ///< empty: every client
   };
   /// Frames waiting, and how many clients the front one has been offered to.
   struct Queue {
