@@ -3,7 +3,7 @@
 // board port, flat out or paced, while 1 / 10 / 100 UDP clients on the bridge's client port count
 // what reaches them. Per run: per-client rate, loss split by where it happened (before the bridge
 // took the frames in; after, counted by the bridge; in the clients' own sockets; unexplained),
-// latency p50/p99/max, the bridge's CPU. One JSON object per run on stdout, a table on stderr.
+// latency p50/p99/max (board send to the kernel's arrival time at the client), the bridge's CPU. One JSON object per run on stdout, a table on stderr.
 //
 //   build/bench/bridge/bridge_load_bench [--hitl PATH] [--seconds S] [--clients 1,10,100] [--rates 0,1000]
 //
@@ -47,6 +47,13 @@ int64_t now_ns() {
   return int64_t{t.tv_sec} * 1'000'000'000 + t.tv_nsec;
 }
 
+/// CLOCK_REALTIME, the clock of the kernel's receive timestamps (SO_TIMESTAMPNS).
+int64_t wall_ns() {
+  timespec t{};
+  clock_gettime(CLOCK_REALTIME, &t);
+  return int64_t{t.tv_sec} * 1'000'000'000 + t.tv_nsec;
+}
+
 sockaddr_in loopback(uint16_t port) {
   sockaddr_in a{};
   a.sin_family = AF_INET;
@@ -55,12 +62,15 @@ sockaddr_in loopback(uint16_t port) {
   return a;
 }
 
-/// A UDP socket on 127.0.0.1:port (0: ephemeral) with a large receive buffer and SO_RXQ_OVFL.
+/// A UDP socket on 127.0.0.1:port (0: ephemeral) with a large receive buffer, SO_RXQ_OVFL and
+/// kernel receive timestamps (the latency is the kernel's arrival time at the client, so a busy
+/// reader here does not add to it).
 int open_socket(uint16_t port) {
   const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
   const int bytes = 8 << 20, on = 1;
   ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes);
   ::setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
+  ::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
   const auto a = loopback(port);
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) {
     std::perror("bind");
@@ -158,7 +168,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
   std::thread receiver([&] {
     epoll_event events[128];
     uint8_t data[2048];
-    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(uint32_t))];
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(uint32_t)) + CMSG_SPACE(sizeof(timespec))];
     int64_t idle_since = now_ns(), next_heartbeat = now_ns();
     const auto clients_at = loopback(clients_port);
     for (;;) {
@@ -189,8 +199,16 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
           m.msg_controllen = sizeof control;
           const ssize_t len = ::recvmsg(c.fd, &m, MSG_DONTWAIT);
           if (len < 0) break;
-          for (cmsghdr* cm = CMSG_FIRSTHDR(&m); cm != nullptr; cm = CMSG_NXTHDR(&m, cm))
+          int64_t arrived_ns = 0;
+          for (cmsghdr* cm = CMSG_FIRSTHDR(&m); cm != nullptr; cm = CMSG_NXTHDR(&m, cm)) {
             if (cm->cmsg_level == SOL_SOCKET && cm->cmsg_type == SO_RXQ_OVFL) std::memcpy(&c.kernel_drops, CMSG_DATA(cm), sizeof(uint32_t));
+            if (cm->cmsg_level == SOL_SOCKET && cm->cmsg_type == SCM_TIMESTAMPNS) {
+              timespec ts{};
+              std::memcpy(&ts, CMSG_DATA(cm), sizeof ts);
+              arrived_ns = int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
+            }
+          }
+          if (arrived_ns == 0) arrived_ns = wall_ns();
           if (len < 14 || data[0] != 0xFD) continue;
           const uint32_t id = data[7] | (data[8] << 8) | (data[9] << 16);
           if (id != msg::Attitude::kId && id != msg::HighresImu::kId) continue;
@@ -198,7 +216,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
           std::memcpy(&index, data + 10, sizeof index);  // time_boot_ms / the low half of time_usec
           ++c.received;
           if (index < capacity && sent_at[index] != 0 && latencies_ns.size() < latencies_ns.capacity())
-            latencies_ns.push_back(now_ns() - sent_at[index]);
+            latencies_ns.push_back(arrived_ns - sent_at[index]);
         }
       }
     }
@@ -231,7 +249,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
       h.id = 1;
       n = board.encode(h, buf);
     }
-    sent_at[sent] = now_ns();
+    sent_at[sent] = wall_ns();
     if (::sendto(board_fd, buf.data(), n, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to) < 0) {
       ++send_refused;  // our own socket full: not sent, so not counted as sent
       sent_at[sent] = 0;
