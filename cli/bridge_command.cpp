@@ -34,7 +34,8 @@ nlohmann::json to_json(const bridge::BridgeHealth& h) {
                       {"heartbeat_age_s", h.heartbeat_age_s ? nlohmann::json(*h.heartbeat_age_s) : nlohmann::json(nullptr)},
                       {"rtt_ms", h.rtt_ms ? nlohmann::json(*h.rtt_ms) : nlohmann::json(nullptr)},
                       {"clients", h.clients}, {"duplicates", h.duplicates},
-                      {"ignored_other_address", h.ignored_other_address}, {"untracked_frames", h.untracked_frames}};
+                      {"ignored_other_address", h.ignored_other_address}, {"untracked_frames", h.untracked_frames},
+                      {"kernel_rx_drops", h.kernel_rx_drops}};
   nlohmann::json loss = nlohmann::json::object();
   for (const auto& [source, l] : h.loss) loss[source] = {{"received", l.received}, {"lost", l.lost}, {"loss_pct", l.loss_pct}};
   j["loss"] = loss;
@@ -42,7 +43,8 @@ nlohmann::json to_json(const bridge::BridgeHealth& h) {
   for (const auto& l : h.links) {
     links.push_back({{"name", l.name}, {"partner", l.partner}, {"connected", l.connected}, {"packets_in", l.packets_in},
                      {"bytes_in", l.bytes_in}, {"packets_out", l.packets_out}, {"bytes_out", l.bytes_out},
-                     {"duplicates_in", l.duplicates_in}, {"send_errors", l.send_errors}});
+                     {"duplicates_in", l.duplicates_in}, {"send_errors", l.send_errors}, {"dropped", l.dropped},
+                     {"deliveries", l.deliveries}, {"send_buffer_full", l.send_buffer_full}, {"kernel_rx_drops", l.kernel_rx_drops}});
   }
   j["links"] = links;
   return j;
@@ -76,6 +78,12 @@ std::string to_line(const bridge::BridgeHealth& h) {
   }
   if (h.duplicates) line += "  duplicates dropped " + std::to_string(h.duplicates);
   if (h.ignored_other_address) line += "  ignored (not the board) " + std::to_string(h.ignored_other_address);
+  if (h.kernel_rx_drops) line += "  kernel rx drops " + std::to_string(h.kernel_rx_drops);
+  for (const auto& l : h.links) {
+    if (l.name != "clients") continue;
+    if (l.dropped) line += "  clients dropped " + std::to_string(l.dropped);
+    if (l.send_errors) line += "  clients send errors " + std::to_string(l.send_errors);
+  }
   return line;
 }
 

@@ -105,6 +105,27 @@ def length(fields):
     return sum(SIZES[f["type"]] * max(1, f["n"]) for f in fields)
 
 
+def offsets(msg):
+    """Payload offset of each field in wire order."""
+    out, at = {}, 0
+    for f in wire_order(msg["fields"]):
+        out[f["name"]] = at
+        at += SIZES[f["type"]] * max(1, f["n"])
+    return out
+
+
+def check_entry(msg):
+    """msg::kStandardChecks' row: id, CRC_EXTRA, lengths, target flags and offsets (as mavgen's
+    mavlink_msg_entry_t; MANUAL_CONTROL names its system in `target`, as the router reads it)."""
+    ofs = offsets(msg)
+    system = "target_system" if "target_system" in ofs else ("target" if "target" in ofs else None)
+    flags = (1 if system else 0) | (2 if "target_component" in ofs else 0)
+    base = [f for f in msg["fields"] if not f["ext"]]
+    return "{%d, %d, %d, %d, %d, %d, %d}" % (
+        msg["id"], crc_extra(msg), length(base), length(msg["fields"]), flags,
+        ofs[system] if system else 0, ofs.get("target_component", 0))
+
+
 def main():
     msgs = load(sys.argv[1])
     out = []
@@ -119,6 +140,7 @@ def main():
     w("#include <tuple>")
     w("")
     w('#include "base/mavlink/field_ref.h"')
+    w('#include "base/mavlink/message_check.h"')
     w("")
     w("namespace hitl::mavlink::msg {")
     for name in MESSAGES:
@@ -153,6 +175,14 @@ def main():
     w("")
     w("/// Every message compiled into hitl, for registries and conformance tests.")
     w("using All = TypeList<%s>;" % ", ".join(camel(n) for n in MESSAGES))
+    w("")
+    w("/// Every message of the XML, typed above or not, by id: {id, CRC_EXTRA, min length, max length,")
+    w("/// target flags, target_system offset, target_component offset} (message_check.h).")
+    every = sorted(msgs.values(), key=lambda m: m["id"])
+    w("inline constexpr std::array<MessageCheck, %d> kStandardChecks{{" % len(every))
+    for m in every:
+        w("    %s,  // %s" % (check_entry(m), m["name"]))
+    w("}};")
     w("")
     w("}  // namespace hitl::mavlink::msg")
     print("\n".join(out))

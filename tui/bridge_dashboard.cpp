@@ -155,8 +155,11 @@ DashboardModel BridgeDashboard::collect() {
       {"out", count(board.packets_out) + " pkt"},
       {"send err", count(board.send_errors), board.send_errors ? Health::Bad : Health::Good},
       {"dups", count(h->duplicates), h->duplicates ? Health::Degraded : Health::Good},
+      {"rx drops", count(h->kernel_rx_drops), h->kernel_rx_drops ? Health::Degraded : Health::Good},
       {"links", count(h->links.size())},
   };
+  for (const auto& l : h->links)  // what was taken in and lost towards the clients, counted where it happened
+    if (l.name == "clients" && l.dropped + l.send_errors > 0) m.link.push_back({"client drops", count(l.dropped + l.send_errors), Health::Bad});
   for (const auto& [source, l] : h->loss)
     m.link.push_back({"loss " + source, format("%.1f %%", l.loss_pct), l.loss_pct > 0 ? Health::Degraded : Health::Good});
   return m;

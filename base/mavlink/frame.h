@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <span>
 
+#include "base/mavlink/message_check.h"
 #include "base/mavlink/message_desc.h"
 #include "base/mavlink/typed_codec.h"
 
@@ -42,7 +43,8 @@ struct Frame {
   std::array<uint8_t, kSignatureLen> signature{};  ///< valid when is_signed()
   std::array<uint8_t, kMaxFrameLen> raw{};         ///< the frame's bytes as received or sent
   uint16_t raw_len = 0;
-  const MessageDesc* desc = nullptr;  ///< null for an id the message set does not know (CRC unchecked)
+  const MessageDesc* desc = nullptr;  ///< null for an id the message set does not know
+  const MessageCheck* check = nullptr;  ///< the official XML's entry (CRC checked, target offsets); null outside it
 
   bool is_signed() const { return (incompat_flags & kIncompatFlagSigned) != 0; }
   std::span<const uint8_t> bytes() const { return {raw.data(), raw_len}; }

@@ -35,10 +35,15 @@ bool FrameParser::verify_signature(std::span<const uint8_t> frame, std::size_t s
   return true;
 }
 
-bool FrameParser::checksum_matches(std::span<const uint8_t> d, std::size_t header_len, std::size_t len,
-                                   const MessageDesc& desc) {
+bool FrameParser::checksum_matches(std::span<const uint8_t> d, std::size_t header_len, std::size_t len, uint8_t crc_extra) {
   const uint16_t wire_crc = static_cast<uint16_t>(d[header_len + len] | (d[header_len + len + 1] << 8));
-  return crc_accumulate(desc.crc_extra, crc_x25(d.subspan(1, header_len - 1 + len))) == wire_crc;
+  return crc_accumulate(crc_extra, crc_x25(d.subspan(1, header_len - 1 + len))) == wire_crc;
+}
+
+std::optional<uint8_t> FrameParser::crc_extra_of(uint32_t msgid, const MessageDesc* desc) {
+  if (desc != nullptr) return desc->crc_extra;  // a dialect may redefine a standard id
+  if (const MessageCheck* check = find_standard_check(msgid)) return check->crc_extra;
+  return std::nullopt;
 }
 
 FrameParser::Check FrameParser::checked_frame_at(std::span<const uint8_t> d) const {
@@ -48,10 +53,10 @@ FrameParser::Check FrameParser::checked_frame_at(std::span<const uint8_t> d) con
   if (d.size() < header_len) return Check::Unknown;
   const std::size_t len = d[1];
   const uint32_t msgid = v2 ? (uint32_t{d[7]} | (uint32_t{d[8]} << 8) | (uint32_t{d[9]} << 16)) : d[5];
-  const MessageDesc* desc = messages_->find(msgid);
-  if (desc == nullptr) return Check::No;
+  const auto crc_extra = crc_extra_of(msgid, messages_->find(msgid));
+  if (!crc_extra) return Check::No;
   if (d.size() < header_len + len + kChecksumLen) return Check::Unknown;
-  return checksum_matches(d, header_len, len, *desc) ? Check::Yes : Check::No;
+  return checksum_matches(d, header_len, len, *crc_extra) ? Check::Yes : Check::No;
 }
 
 FrameParser::Check FrameParser::framing_is_whole(std::span<const uint8_t> d, std::size_t frame_len, bool final) const {
@@ -97,8 +102,8 @@ FrameParser::Candidate FrameParser::try_frame(std::span<const uint8_t> d, bool f
 
   const MessageDesc* desc = messages_->find(msgid);
   const uint16_t wire_crc = static_cast<uint16_t>(d[header_len + len] | (d[header_len + len + 1] << 8));
-  if (desc != nullptr) {
-    if (!checksum_matches(d, header_len, len, *desc)) {
+  if (const auto crc_extra = crc_extra_of(msgid, desc)) {
+    if (!checksum_matches(d, header_len, len, *crc_extra)) {
       ++stats_.crc_errors;
       return Candidate::Reject;
     }
@@ -139,6 +144,7 @@ FrameParser::Candidate FrameParser::try_frame(std::span<const uint8_t> d, bool f
   std::memcpy(f.raw.data(), d.data(), frame_len);
   f.raw_len = static_cast<uint16_t>(frame_len);
   f.desc = desc;
+  f.check = find_standard_check(msgid);
   return Candidate::Frame;
 }
 
@@ -158,7 +164,8 @@ std::size_t FrameParser::process(std::span<const uint8_t> data, bool final, cons
         ++stats_.frames;
         if (frame_.version == Version::V1) ++stats_.v1_frames;
         if (frame_.is_signed()) ++stats_.signed_frames;
-        if (frame_.desc == nullptr) ++stats_.unknown_ids;
+        if (frame_.desc == nullptr && frame_.check == nullptr) ++stats_.unknown_ids;
+        else if (frame_.desc == nullptr) ++stats_.untyped_frames;
         pos += frame_len;
         on_frame(frame_);
         break;

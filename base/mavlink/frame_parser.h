@@ -1,6 +1,7 @@
 // Streaming MAVLink frame parser: v1 and v2, resynchronising after garbage,
 // checking the X.25 checksum with CRC_EXTRA, verifying signatures when given a key,
-// and counting every kind of error. A frame of an id the message set does not know cannot
+// and counting every kind of error. Every id of the official XML has its checksum checked, typed
+// or not (message_check.h). A frame of an id neither the message set nor that XML knows cannot
 // have its checksum checked: it is passed on raw (and counted) only when its framing is whole,
 // as mavlink-router forwards such ids: it ends exactly at the end of a datagram or at the next
 // start byte, and covers no frame whose checksum holds (a stream waits for the bytes to tell). Otherwise its start byte
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "base/mavlink/frame.h"
+#include "base/mavlink/message_check.h"
 #include "base/mavlink/message_set.h"
 #include "base/mavlink/signing.h"
 
@@ -26,11 +28,12 @@ struct ParserStats {
   uint64_t v1_frames = 0;
   uint64_t signed_frames = 0;
   uint64_t bytes = 0;               ///< bytes fed
-  uint64_t crc_errors = 0;          ///< complete frames of a known id whose checksum did not match
+  uint64_t crc_errors = 0;          ///< complete frames of a known id (typed, --dialect or in the official XML) whose checksum did not match
   uint64_t parse_errors = 0;        ///< runs of bytes that were not part of any frame
   uint64_t garbage_bytes = 0;       ///< bytes in those runs
   uint64_t truncated = 0;           ///< frames cut off by the end of a datagram
-  uint64_t unknown_ids = 0;         ///< frames delivered whose id the message set does not know (framing whole)
+  uint64_t untyped_frames = 0;      ///< frames delivered of an id of the official XML the message set has no description of (checksum checked)
+  uint64_t unknown_ids = 0;         ///< frames delivered whose id neither the message set nor the official XML knows (framing whole)
   uint64_t unverified = 0;          ///< candidates whose checksum could not be checked (unknown id), delivered or not
   uint64_t unverified_dropped = 0;  ///< of those, the ones whose framing was not whole (their start byte counts as garbage)
   uint64_t bad_incompat_flags = 0;  ///< v2 frames with incompat flags hitl does not understand
@@ -64,7 +67,9 @@ class FrameParser {
   enum class Candidate { Frame, NeedMore, Reject, SkipWhole };
   Candidate try_frame(std::span<const uint8_t> data, bool final, std::size_t& frame_len);
   enum class Check { No, Yes, Unknown };  ///< Unknown: a stream needs more bytes to tell
-  static bool checksum_matches(std::span<const uint8_t> d, std::size_t header_len, std::size_t len, const MessageDesc& desc);
+  static bool checksum_matches(std::span<const uint8_t> d, std::size_t header_len, std::size_t len, uint8_t crc_extra);
+  /// The message set's CRC_EXTRA for the id, else the official XML's (message_check.h); none for an unknown id.
+  static std::optional<uint8_t> crc_extra_of(uint32_t msgid, const MessageDesc* desc);
   /// Whether a complete frame of a known id with a good checksum starts at d[0].
   Check checked_frame_at(std::span<const uint8_t> d) const;
   /// Whether the unknown-id candidate d[0, frame_len) is framed whole (see the file comment).

@@ -28,7 +28,18 @@ constexpr double kReconnectPeriod_s = 2.0;
 constexpr int kTcpConnectTimeout_ms = 500;
 constexpr std::size_t kTimesyncRemembered = 8;
 constexpr std::size_t kMaxClientDatagramsPerDrain = 64;
-constexpr std::size_t kMaxDatagramsPerDrain = 256;
+constexpr std::size_t kMaxDatagramsPerDrain = 256;  ///< per link and wake-up: a flood cannot hold the loop
+/// The board is read only while the clients' queue has room for this many more frames (a
+/// datagram's worth), so what is taken in is sent, and a board faster than the clients waits in
+/// the kernel's receive buffer, whose overflow is counted there (kernel_rx_drops).
+constexpr std::size_t kRoomForADatagram = 128;
+constexpr int kBoardReceiveBuffer_bytes = 1 << 20;  ///< as before: a larger one only adds latency under overload
+/// The client port sized for a 100-client fan-out of a flat-out board stream.
+constexpr net::ClientPortLimits kClientLimits{.max_clients = 128,
+                                              .max_datagrams_out = 4096,
+                                              .max_queued_frames = 2048,
+                                              .send_buffer_bytes = 4 << 20,
+                                              .receive_buffer_bytes = 1 << 20};
 
 std::string source_key(uint8_t sysid, uint8_t compid) { return std::to_string(sysid) + "/" + std::to_string(compid); }
 
@@ -90,18 +101,20 @@ class Bridge {
     c.endpoint.policy = net::PartnerPolicy::Fixed;
     c.endpoint.name = "the board link's local port (--local-port)";
     c.hear_peer_only = true;  // the board answers from its own port; anyone else is not the board
+    c.endpoint.receive_buffer_bytes = kBoardReceiveBuffer_bytes;
     auto ep = net::UdpLink::open(c);
     if (!ep) return ep.error().suffixed(" (a hitl sim, another hitl bridge or a direct command owns it?)");
+    board_buffers_ = ep.value()->buffer_sizes();
     board_ = std::move(ep.value());
     board_link_ = router_.add_link("board", [this](std::span<const uint8_t> bytes, const auto&) { (void)board_->send(bytes); });
 
     if (config_.clients_port != 0) {
-      auto cp = net::ClientPort::open(config_.clients_bind, config_.clients_port, {});
+      auto cp = net::ClientPort::open(config_.clients_bind, config_.clients_port, {}, kClientLimits);
       if (!cp) return cp.error().suffixed(" (is a hitl sim or another hitl bridge running? --clients 0 disables)");
       clients_.emplace(std::move(cp.value()));
       clients_link_ = router_.add_link(
-          "clients", [this](std::span<const uint8_t> bytes, const std::optional<net::SocketAddress>& except) {
-            clients_->broadcast(bytes, except);
+          "clients", [this](std::span<const uint8_t> bytes, const router::Delivery& to) {
+            clients_->broadcast(bytes, to.except, to.only);
           },
           /*hub=*/true);
     }
@@ -129,7 +142,25 @@ class Bridge {
     return out;
   }
 
+  /// The socket buffers the kernel granted, against what was asked (net.core.rmem_max / wmem_max cap them).
+  std::string describe_buffers() const {
+    const auto granted = [](int asked, int got, const char* cap) {
+      // Linux doubles what it is asked for (its bookkeeping); less than that: the sysctl capped it.
+      std::string text = std::to_string(got) + " B";
+      if (got < 2 * asked) text += " (asked " + std::to_string(asked) + " B; " + cap + " caps it)";
+      return text;
+    };
+    std::string out = "socket buffers granted: board receive " + granted(kBoardReceiveBuffer_bytes, board_buffers_.receive_bytes, "net.core.rmem_max");
+    if (clients_) {
+      const auto b = clients_->buffer_sizes();
+      out += ", clients send " + granted(kClientLimits.send_buffer_bytes, b.send_bytes, "net.core.wmem_max") + ", clients receive " +
+             granted(kClientLimits.receive_buffer_bytes, b.receive_bytes, "net.core.rmem_max");
+    }
+    return out;
+  }
+
   Status run(const std::atomic<bool>& stop) {
+    observer_.on_event(describe_buffers(), Severity::Info);
     start_s_ = monotonic_s();
     next_tick_s_ = start_s_;
     while (!stop.load()) {
@@ -153,17 +184,22 @@ class Bridge {
  private:
   void wait_readable(double timeout_ms) {
     std::vector<pollfd> fds;
-    fds.push_back({board_->fd(), POLLIN, 0});
-    if (clients_) fds.push_back({clients_->fd(), POLLIN, 0});
+    // A board faster than the clients waits in its socket while their queue is full.
+    if (!clients_ || clients_->own_room() >= kRoomForADatagram) fds.push_back({board_->fd(), POLLIN, 0});
+    if (clients_) fds.push_back({clients_->fd(), static_cast<short>(POLLIN | (clients_->wants_writable() ? POLLOUT : 0)), 0});
     for (const auto& e : endpoints_)
       if (e->link->fd() >= 0) fds.push_back({e->link->fd(), POLLIN, 0});
     int ms = std::max(0, static_cast<int>(timeout_ms));
-    if (clients_ && clients_->queued_frames() > 0) ms = 0;  // the client port's send bound left some for later
+    // The client port's send bound left some for later: go on at once (unless its buffer is full).
+    if (clients_ && clients_->queued_frames() > 0 && !clients_->wants_writable()) ms = 0;
     (void)::poll(fds.data(), fds.size(), ms);
   }
 
   void drain(double now) {
-    board_->drain(board_parser_, [&](const mavlink::Frame& f) { on_board_frame(f, now); }, kMaxDatagramsPerDrain);
+    for (std::size_t reads = 0; reads < kMaxDatagramsPerDrain; ++reads) {
+      if (clients_ && clients_->own_room() < kRoomForADatagram) break;  // sent first, then taken in
+      if (board_->drain(board_parser_, [&](const mavlink::Frame& f) { on_board_frame(f, now); }, 1) == 0) break;
+    }
     if (clients_) {
       clients_->receive_some(kMaxClientDatagramsPerDrain, [&](const net::Datagram& d) {
         clients_parser_.parse_datagram(d.bytes, [&](const mavlink::Frame& f) { router_.route(f, clients_link_, now, d.from); });
@@ -226,7 +262,7 @@ class Bridge {
   void watch_board(double now) {
     if (last_frame_s_ < 0) return;
     const double silent_s = now - last_frame_s_;
-    if (!gone_ && silent_s > kBoardGoneAfter_s) {
+    if (!gone_ && silent_s > kBoardGoneAfter_s && !board_->wait_readable(0)) {  // a board whose datagrams wait is not gone
       gone_ = true;
       gone_since_s_ = last_frame_s_;
       char text[200];
@@ -289,12 +325,20 @@ class Bridge {
       l.packets_out = c.frames_out - std::min(c.frames_out, l.send_errors);
       l.bytes_out = c.bytes_out;
       l.duplicates_in = c.duplicates_in;
+      if (link != nullptr) l.kernel_rx_drops = link->stats().kernel_rx_drops;
       return l;
     };
     h.links.push_back(link_health(board_link_, board_address_->to_string(), last_frame_s_ >= 0 && !gone_, board_.get()));
     if (clients_) {
       h.clients = clients_->client_count();
-      h.links.push_back(link_health(clients_link_, clients_->local_address()->to_string(), h.clients > 0));
+      auto l = link_health(clients_link_, clients_->local_address()->to_string(), h.clients > 0);
+      const auto& s = clients_->stats();
+      l.deliveries = s.datagrams_out;
+      l.dropped = s.dropped_frames;
+      l.send_errors = s.send_errors;
+      l.send_buffer_full = s.send_buffer_full;
+      l.kernel_rx_drops = clients_->kernel_rx_drops();
+      h.links.push_back(l);
     }
     uint64_t ignored = board_->stats().ignored_other_address;
     for (const auto& e : endpoints_) {
@@ -304,6 +348,7 @@ class Bridge {
       ignored += e->link->stats().ignored_other_address;
     }
     h.duplicates = router_.duplicates();
+    h.kernel_rx_drops = board_->stats().kernel_rx_drops;
     h.ignored_other_address = ignored;
     h.untracked_frames = untracked_frames_;
     return h;
@@ -318,6 +363,7 @@ class Bridge {
   mavlink::FrameEncoder own_;
   std::optional<net::SocketAddress> board_address_;
   std::unique_ptr<net::Link> board_;
+  net::UdpEndpoint::BufferSizes board_buffers_;
   std::optional<net::ClientPort> clients_;
   std::vector<std::unique_ptr<Endpoint>> endpoints_;
   router::LinkId board_link_ = 0, clients_link_ = 0;

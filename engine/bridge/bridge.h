@@ -55,6 +55,10 @@ struct LinkHealth {
   bool connected = false;
   uint64_t packets_in = 0, bytes_in = 0, packets_out = 0, bytes_out = 0, duplicates_in = 0;
   uint64_t send_errors = 0;  ///< packets the kernel refused to send (not in packets_out)
+  uint64_t dropped = 0;      ///< clients: frames routed here that found the send queue full (never sent)
+  uint64_t deliveries = 0;   ///< clients: datagrams sent, one per frame and client
+  uint64_t send_buffer_full = 0;  ///< clients: sends that found the socket buffer full and waited (not lost)
+  uint64_t kernel_rx_drops = 0;   ///< datagrams the kernel dropped before the bridge read them (receive buffer full)
 };
 
 struct BridgeHealth {
@@ -68,6 +72,7 @@ struct BridgeHealth {
   uint64_t duplicates = 0;
   uint64_t ignored_other_address = 0;  ///< datagrams on the board link not from the board, or on a udp: endpoint not from its peer
   uint64_t untracked_frames = 0;       ///< board frames from sources beyond kMaxLossSources (not in `loss`)
+  uint64_t kernel_rx_drops = 0;        ///< board datagrams the kernel dropped before the bridge read them (SO_RXQ_OVFL)
 };
 
 class BridgeObserver {

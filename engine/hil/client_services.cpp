@@ -44,8 +44,8 @@ Expected<std::unique_ptr<ClientServices>> ClientServices::open(const SessionConf
     s->board_link_ = s->router_.add_link("board", [self](std::span<const uint8_t> bytes, const auto&) { self->stack_.forward(bytes); });
     s->clients_link_ = s->router_.add_link(
         "clients",
-        [self](std::span<const uint8_t> bytes, const std::optional<net::SocketAddress>& except) {
-          self->clients_->broadcast(bytes, except);
+        [self](std::span<const uint8_t> bytes, const router::Delivery& to) {
+          self->clients_->broadcast(bytes, to.except, to.only);
           ++self->routed_to_clients_;
         },
         /*hub=*/true);

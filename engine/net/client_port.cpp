@@ -14,6 +14,8 @@ Expected<ClientPort> ClientPort::open(const std::string& bind_address, uint16_t 
   c.bind_port = port;
   c.policy = PartnerPolicy::Fixed;
   c.name = port != 0 ? "--clients" : "--gcs";
+  c.send_buffer_bytes = limits.send_buffer_bytes;
+  c.receive_buffer_bytes = limits.receive_buffer_bytes;
   if (port != 0 || !fixed_peers.empty()) {
     auto ep = UdpEndpoint::open(c);
     if (!ep) return ep.error();
@@ -52,7 +54,8 @@ std::size_t ClientPort::receive_some(std::size_t max_datagrams, const std::funct
   return read;
 }
 
-void ClientPort::broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except) {
+void ClientPort::broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except,
+                           const std::vector<SocketAddress>& only) {
   if (!endpoint_ || clients_.empty()) return;
   Queue& queue = except ? forwarded_ : own_;
   if (queue.frames.size() >= limits_.max_queued_frames || bytes.size() > kMaxFrameBytes) {
@@ -63,6 +66,7 @@ void ClientPort::broadcast(std::span<const uint8_t> bytes, const std::optional<S
   std::memcpy(f.bytes.data(), bytes.data(), bytes.size());
   f.size = bytes.size();
   f.except = except;
+  f.only = only;
 }
 
 void ClientPort::forget_silent_clients() {
@@ -77,13 +81,24 @@ void ClientPort::forget_silent_clients() {
 }
 
 void ClientPort::send_from(Queue& queue, std::size_t& budget) {
-  while (!queue.frames.empty() && budget > 0) {
+  while (!queue.frames.empty() && budget > 0 && !blocked_) {
     const Frame& f = queue.frames.front();
     while (queue.next_client < clients_.size() && budget > 0) {
-      const Client& c = clients_[queue.next_client++];
-      if (f.except && c.address == *f.except) continue;
+      const Client& c = clients_[queue.next_client];
+      if ((f.except && c.address == *f.except) ||
+          (!f.only.empty() && std::find(f.only.begin(), f.only.end(), c.address) == f.only.end())) {
+        ++queue.next_client;
+        continue;
+      }
+      const SendOutcome sent = endpoint_->try_send_to(c.address, {f.bytes.data(), f.size});
+      if (sent == SendOutcome::WouldBlock) {  // kept: the same client again once the socket is writable
+        ++stats_.send_buffer_full;
+        blocked_ = true;
+        return;
+      }
       --budget;
-      if (endpoint_->send_to(c.address, {f.bytes.data(), f.size})) ++stats_.datagrams_out;
+      ++queue.next_client;
+      if (sent == SendOutcome::Sent) ++stats_.datagrams_out;
       else ++stats_.send_errors;
     }
     if (queue.next_client < clients_.size()) return;  // budget spent mid-frame: carry on next time
@@ -95,6 +110,7 @@ void ClientPort::send_from(Queue& queue, std::size_t& budget) {
 void ClientPort::pump() {
   if (!endpoint_) return;
   forget_silent_clients();
+  blocked_ = false;
   std::size_t budget = limits_.max_datagrams_out;
   send_from(own_, budget);
   send_from(forwarded_, budget);

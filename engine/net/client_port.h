@@ -11,9 +11,12 @@
 // - broadcast() only queues the frame; pump() sends at most `max_datagrams_out` datagrams per call,
 //   frames from the board and the owner's own first, then client-to-client ones; each of the two
 //   queues holds at most `max_queued_frames` frames, and a frame that finds its queue full is
-//   dropped and counted (`dropped_frames`).
+//   dropped and counted (`dropped_frames`);
+// - a send that finds the socket's buffer full (EAGAIN, ENOBUFS) is not lost: pump() stops there
+//   and carries on with the same client when the socket is writable (wants_writable(): poll POLLOUT).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -33,14 +36,17 @@ struct ClientPortLimits {
   std::size_t max_clients = 64;
   std::size_t max_datagrams_out = 256;  ///< per pump()
   std::size_t max_queued_frames = 512;  ///< per queue (board/own, client-to-client)
+  int send_buffer_bytes = 0;            ///< SO_SNDBUF asked for (0: the kernel's default)
+  int receive_buffer_bytes = 1 << 20;   ///< SO_RCVBUF asked for
 };
 
 struct ClientPortStats {
   uint64_t datagrams_in = 0;
   uint64_t datagrams_out = 0;
-  uint64_t send_errors = 0;
+  uint64_t send_errors = 0;        ///< datagrams the kernel refused (not a full buffer: that waits)
   uint64_t refused_datagrams = 0;  ///< from senders beyond max_clients: dropped
   uint64_t dropped_frames = 0;     ///< frames that found their send queue full
+  uint64_t send_buffer_full = 0;   ///< times a send found the socket's buffer full (EAGAIN/ENOBUFS): kept, sent when writable
 };
 
 class ClientPort {
@@ -57,13 +63,21 @@ class ClientPort {
   /// (learning it). Returns how many were read, refused ones included.
   std::size_t receive_some(std::size_t max_datagrams, const std::function<void(const Datagram&)>& on_datagram);
   /// Queues one frame for every live client and fixed peer except `except` (a client's own frame
-  /// going to the others when set); pump() sends it.
-  void broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except = std::nullopt);
+  /// going to the others when set), or, when `only` is not empty, for those of them in `only` (a
+  /// targeted frame: the clients that showed its target); pump() sends it.
+  void broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except = std::nullopt,
+                 const std::vector<SocketAddress>& only = {});
   /// Forgets silent clients and sends at most limits.max_datagrams_out queued datagrams.
   void pump();
 
   std::size_t client_count() const { return clients_.size(); }
   std::size_t queued_frames() const { return own_.frames.size() + forwarded_.frames.size(); }
+  /// Room left in the queue of frames from the board and the owner.
+  std::size_t own_room() const { return limits_.max_queued_frames - std::min(limits_.max_queued_frames, own_.frames.size()); }
+  /// The last pump() stopped on a full send buffer: wait for POLLOUT before pumping again.
+  bool wants_writable() const { return blocked_ && queued_frames() > 0; }
+  UdpEndpoint::BufferSizes buffer_sizes() const { return endpoint_ ? endpoint_->buffer_sizes() : UdpEndpoint::BufferSizes{}; }
+  uint64_t kernel_rx_drops() const { return endpoint_ ? endpoint_->stats().kernel_rx_drops : 0; }
   std::vector<SocketAddress> clients() const;
   const ClientPortStats& stats() const { return stats_; }
   const ClientPortLimits& limits() const { return limits_; }
@@ -80,6 +94,7 @@ class ClientPort {
     std::array<uint8_t, kMaxFrameBytes> bytes;
     std::size_t size = 0;
     std::optional<SocketAddress> except;
+    std::vector<SocketAddress> only;  ///< empty: every client
   };
   /// Frames waiting, and how many clients the front one has been offered to.
   struct Queue {
@@ -87,7 +102,7 @@ class ClientPort {
     std::size_t next_client = 0;
   };
   void forget_silent_clients();
-  /// Sends from `queue` until it is empty or `budget` runs out.
+  /// Sends from `queue` until it is empty, `budget` runs out or the send buffer is full.
   void send_from(Queue& queue, std::size_t& budget);
 
   std::optional<UdpEndpoint> endpoint_;
@@ -96,6 +111,7 @@ class ClientPort {
   Queue own_;        ///< from the board and the owner itself
   Queue forwarded_;  ///< from one client to the others
   ClientPortStats stats_;
+  bool blocked_ = false;
 };
 
 }  // namespace hitl::net

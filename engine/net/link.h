@@ -39,6 +39,7 @@ struct LinkStats {
   int last_send_errno = 0;     ///< the latest refusal's errno, 0 when none
   uint64_t ignored_other_address = 0;  ///< datagrams from another address than the peer (hear_peer_only)
   uint64_t connects = 0;       ///< streams: connections made (a reconnect adds one)
+  uint64_t kernel_rx_drops = 0;  ///< datagrams the kernel dropped for a full receive buffer (SO_RXQ_OVFL)
 };
 
 /// Something a link says about itself (connected, lost, retrying), for its owner to pass on.

@@ -35,8 +35,11 @@ Expected<UdpEndpoint> UdpEndpoint::open(const Config& config) {
   if (fd < 0) return Error::unavailable(config.name + ": cannot create a UDP socket: " + std::strerror(errno));
   const int on = 1;
   ::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
-  const int buf_bytes = 1 << 20;
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &buf_bytes, sizeof buf_bytes);
+  ::setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);  // the kernel's receive drops, with each datagram
+  if (config.receive_buffer_bytes > 0)
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &config.receive_buffer_bytes, sizeof config.receive_buffer_bytes);
+  if (config.send_buffer_bytes > 0)
+    ::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &config.send_buffer_bytes, sizeof config.send_buffer_bytes);
   if (::bind(fd, bind_addr->get(), bind_addr->length()) != 0) {
     const int err = errno;
     ::close(fd);
@@ -59,6 +62,7 @@ UdpEndpoint::UdpEndpoint(UdpEndpoint&& other) noexcept
       partner_(other.partner_),
       locked_(other.locked_),
       stats_(other.stats_),
+      last_rxq_ovfl_(other.last_rxq_ovfl_),
       rx_buffer_(std::move(other.rx_buffer_)),
       tx_batch_(std::move(other.tx_batch_)) {
   other.fd_ = -1;
@@ -74,6 +78,7 @@ UdpEndpoint& UdpEndpoint::operator=(UdpEndpoint&& other) noexcept {
     partner_ = other.partner_;
     locked_ = other.locked_;
     stats_ = other.stats_;
+    last_rxq_ovfl_ = other.last_rxq_ovfl_;
     rx_buffer_ = std::move(other.rx_buffer_);
     tx_batch_ = std::move(other.tx_batch_);
   }
@@ -106,7 +111,7 @@ void UdpEndpoint::learn(const SocketAddress& from) {
 std::optional<Datagram> UdpEndpoint::receive() {
   sockaddr_storage from{};
   iovec iov{rx_buffer_.data(), rx_buffer_.size()};
-  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timespec))];
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timespec)) + CMSG_SPACE(sizeof(uint32_t))];
   msghdr msg{};
   msg.msg_name = &from;
   msg.msg_namelen = sizeof from;
@@ -131,6 +136,11 @@ std::optional<Datagram> UdpEndpoint::receive() {
         timespec ts{};
         std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
         d.rx_time_unix_ns = int64_t{ts.tv_sec} * 1000000000 + ts.tv_nsec;
+      } else if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
+        uint32_t dropped = 0;  // the socket's running count: add what is new since the last datagram
+        std::memcpy(&dropped, CMSG_DATA(c), sizeof dropped);
+        stats_.kernel_rx_drops += static_cast<uint32_t>(dropped - last_rxq_ovfl_);
+        last_rxq_ovfl_ = dropped;
       }
     }
     if (d.rx_time_unix_ns == 0) d.rx_time_unix_ns = unix_time_ns();
@@ -146,6 +156,31 @@ bool UdpEndpoint::wait_readable(int timeout_ms) const {
   return ::poll(&p, 1, timeout_ms) > 0 && (p.revents & POLLIN);
 }
 
+UdpEndpoint::BufferSizes UdpEndpoint::buffer_sizes() const {
+  BufferSizes b;
+  socklen_t len = sizeof b.receive_bytes;
+  ::getsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &b.receive_bytes, &len);
+  len = sizeof b.send_bytes;
+  ::getsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &b.send_bytes, &len);
+  return b;
+}
+
+SendOutcome UdpEndpoint::try_send_to(const SocketAddress& to, std::span<const uint8_t> bytes) {
+  for (;;) {
+    const ssize_t n = ::sendto(fd_, bytes.data(), bytes.size(), MSG_DONTWAIT | MSG_NOSIGNAL, to.get(), to.length());
+    if (n >= 0) {
+      ++stats_.datagrams_out;
+      stats_.bytes_out += static_cast<uint64_t>(n);
+      return SendOutcome::Sent;
+    }
+    const int error = errno;
+    if (error == EINTR) continue;
+    if (error == EAGAIN || error == EWOULDBLOCK || error == ENOBUFS) return SendOutcome::WouldBlock;
+    (void)refused(to, error);
+    return SendOutcome::Refused;
+  }
+}
+
 Status UdpEndpoint::send_to(const SocketAddress& to, std::span<const uint8_t> bytes) {
   for (;;) {
     const ssize_t n = ::sendto(fd_, bytes.data(), bytes.size(), MSG_DONTWAIT | MSG_NOSIGNAL, to.get(), to.length());
@@ -156,15 +191,19 @@ Status UdpEndpoint::send_to(const SocketAddress& to, std::span<const uint8_t> by
     }
     const int error = errno;
     if (error == EINTR) continue;
-    ++stats_.send_errors;
-    stats_.last_send_errno = error;
-    std::string text = config_.name + ": " + describe_send_error(error, local_, to);
-    if (std::find(failed_destinations_.begin(), failed_destinations_.end(), to) == failed_destinations_.end()) {
-      failed_destinations_.push_back(to);
-      unreported_send_errors_.push_back(text);
-    }
-    return Error{std::move(text)};
+    return refused(to, error);
   }
+}
+
+Error UdpEndpoint::refused(const SocketAddress& to, int error) {
+  ++stats_.send_errors;
+  stats_.last_send_errno = error;
+  std::string text = config_.name + ": " + describe_send_error(error, local_, to);
+  if (std::find(failed_destinations_.begin(), failed_destinations_.end(), to) == failed_destinations_.end()) {
+    failed_destinations_.push_back(to);
+    unreported_send_errors_.push_back(text);
+  }
+  return Error{std::move(text)};
 }
 
 Status UdpEndpoint::send(std::span<const uint8_t> bytes) {

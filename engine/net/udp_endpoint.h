@@ -28,7 +28,12 @@ struct EndpointStats {
   uint64_t send_errors = 0;  ///< datagrams the kernel refused (never counted in datagrams_out)
   int last_send_errno = 0;   ///< the latest refusal's errno, 0 when none
   uint64_t partner_changes = 0;
+  uint64_t kernel_rx_drops = 0;  ///< datagrams the kernel dropped for a full receive buffer (SO_RXQ_OVFL)
 };
+
+/// What one send did: left, or the send buffer was full (EAGAIN/ENOBUFS: try again when writable,
+/// not an error), or the kernel refused it (counted in send_errors).
+enum class SendOutcome { Sent, WouldBlock, Refused };
 
 struct Datagram {
   std::span<const uint8_t> bytes;
@@ -44,6 +49,12 @@ class UdpEndpoint {
     std::optional<SocketAddress> peer;
     PartnerPolicy policy = PartnerPolicy::LastSender;
     std::string name = "UDP";  ///< names the endpoint in errors ("--port", "HIL link")
+    int receive_buffer_bytes = 1 << 20;  ///< SO_RCVBUF asked for (the kernel caps it at net.core.rmem_max)
+    int send_buffer_bytes = 0;           ///< SO_SNDBUF asked for; 0: the kernel's default (net.core.wmem_default)
+  };
+  /// The socket buffers the kernel granted (it doubles what it was asked, capped at *mem_max).
+  struct BufferSizes {
+    int receive_bytes = 0, send_bytes = 0;
   };
 
   /// Opens and binds; a port in use or a bad address is an Error naming both.
@@ -64,6 +75,8 @@ class UdpEndpoint {
   /// Sends one datagram to the partner; an Error when no partner is known yet or the send fails.
   Status send(std::span<const uint8_t> bytes);
   Status send_to(const SocketAddress& to, std::span<const uint8_t> bytes);
+  /// send_to() that tells a full send buffer apart: WouldBlock is not counted as a send error.
+  SendOutcome try_send_to(const SocketAddress& to, std::span<const uint8_t> bytes);
 
   /// Appends a frame to the datagram being built; sends first when it would exceed `max_datagram`.
   Status queue(std::span<const uint8_t> frame);
@@ -80,6 +93,7 @@ class UdpEndpoint {
   void set_partner(const SocketAddress& address) { partner_ = address; }
   const SocketAddress& local_address() const { return local_; }
   const EndpointStats& stats() const { return stats_; }
+  BufferSizes buffer_sizes() const;
   const std::string& name() const { return config_.name; }
   int fd() const { return fd_; }
 
@@ -88,6 +102,8 @@ class UdpEndpoint {
  private:
   UdpEndpoint(int fd, Config config, SocketAddress local);
   void learn(const SocketAddress& from);
+  /// Counts a refused send and keeps its words for take_send_errors() (once per destination).
+  Error refused(const SocketAddress& to, int error);
 
   int fd_ = -1;
   Config config_;
@@ -95,6 +111,7 @@ class UdpEndpoint {
   std::optional<SocketAddress> partner_;
   bool locked_ = false;
   EndpointStats stats_;
+  uint32_t last_rxq_ovfl_ = 0;  ///< the kernel's running SO_RXQ_OVFL count (it wraps at 2^32)
   std::vector<uint8_t> rx_buffer_;
   std::vector<uint8_t> tx_batch_;
   std::vector<SocketAddress> failed_destinations_;

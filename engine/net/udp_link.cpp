@@ -50,6 +50,7 @@ void UdpLink::sync_stats() {
   stats_.bytes_out = e.bytes_out;
   stats_.send_errors = e.send_errors;
   stats_.last_send_errno = e.last_send_errno;
+  stats_.kernel_rx_drops = e.kernel_rx_drops;
 }
 
 }  // namespace hitl::net

@@ -34,6 +34,7 @@ class UdpLink final : public Link {
   std::optional<SocketAddress> local_address() const override { return endpoint_.local_address(); }
   int fd() const override { return endpoint_.fd(); }
   std::vector<std::string> take_send_errors() override { return endpoint_.take_send_errors(); }
+  UdpEndpoint::BufferSizes buffer_sizes() const { return endpoint_.buffer_sizes(); }
 
  private:
   UdpLink(UdpEndpoint endpoint, const Config& config);

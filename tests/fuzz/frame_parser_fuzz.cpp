@@ -76,12 +76,13 @@ void check_frame(const Frame& f, Seen& seen, bool must_be_signed) {
   for (std::size_t i = f.payload_len; i < kMaxPayloadLen; ++i) FUZZ_CHECK(f.payload[i] == 0);  // zero-extended
   if (f.version == Version::V1) ++seen.v1;
   if (f.is_signed()) ++seen.signed_;
-  if (f.desc == nullptr) {
+  if (f.desc == nullptr && f.check == nullptr) {
     ++seen.unknown;
   } else {
-    // A delivered frame of a known id has a good checksum.
+    // A delivered frame of a known id (typed or of the official XML) has a good checksum.
     const std::size_t header = v2 ? kHeaderLenV2 : kHeaderLenV1;
-    const uint16_t crc = crc_accumulate(f.desc->crc_extra, crc_x25(std::span<const uint8_t>(f.raw.data() + 1, header - 1 + f.payload_len)));
+    const uint8_t crc_extra = f.desc != nullptr ? f.desc->crc_extra : f.check->crc_extra;
+    const uint16_t crc = crc_accumulate(crc_extra, crc_x25(std::span<const uint8_t>(f.raw.data() + 1, header - 1 + f.payload_len)));
     FUZZ_CHECK(crc == f.checksum);
     FUZZ_CHECK(f.desc->id == f.msgid);
   }

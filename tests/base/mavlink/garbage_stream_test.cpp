@@ -152,18 +152,24 @@ TEST(GarbageStream, EveryIntactFrameAndNoFalseMessageAsStream) {
 TEST(GarbageStream, StrayStartByteOfAnUnknownIdDoesNotSwallowTheNextFrame) {
   const MessageSet set = MessageSet::compiled();
   FrameEncoder enc(1, 1);
-  // v1, id 247 (not compiled in), length 251: the false frame of issue 19.
-  Bytes bytes = {kStxV1, 251, 0, 1, 1, 247};
-  const Bytes good = encode(enc, gcs_heartbeat());
-  bytes.insert(bytes.end(), good.begin(), good.end());
-  bytes.resize(bytes.size() + 260, 0x55);
-  FrameParser parser(set);
-  std::vector<Frame> out;
-  parser.parse_datagram(bytes, [&](const Frame& f) { out.push_back(f); });
-  ASSERT_EQ(out.size(), 1u);
-  EXPECT_NE(out[0].desc, nullptr);
-  EXPECT_EQ(parser.stats().unknown_ids, 0u);
-  EXPECT_GE(parser.stats().unverified_dropped, 1u);
+  // v1, length 251: the false frame of issue 19 (id 247, COLLISION: not compiled in, but in the
+  // official XML, so now its checksum is checked), and the same with 240, an id outside the XML,
+  // which the unknown-id rule still judges by its framing.
+  for (const uint8_t id : {uint8_t{247}, uint8_t{240}}) {
+    SCOPED_TRACE(id);
+    ASSERT_EQ(find_standard_check(id) != nullptr, id == 247);
+    Bytes bytes = {kStxV1, 251, 0, 1, 1, id};
+    const Bytes good = encode(enc, gcs_heartbeat());
+    bytes.insert(bytes.end(), good.begin(), good.end());
+    bytes.resize(bytes.size() + 260, 0x55);
+    FrameParser parser(set);
+    std::vector<Frame> out;
+    parser.parse_datagram(bytes, [&](const Frame& f) { out.push_back(f); });
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_NE(out[0].desc, nullptr);
+    EXPECT_EQ(parser.stats().unknown_ids, 0u);
+    EXPECT_GE(id == 247 ? parser.stats().crc_errors : parser.stats().unverified_dropped, 1u);
+  }
 }
 
 TEST(GarbageStream, UnknownIdWithWholeFramingIsPassedOn) {

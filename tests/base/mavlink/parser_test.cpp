@@ -112,6 +112,46 @@ TEST_F(ParserTest, UnknownIdIsPassedOnRawAndCounted) {
   EXPECT_EQ(parser.stats().unknown_ids, 1u);
 }
 
+// Issue 27: junk with a standard id hitl has no type for (SET_MODE, #11) passed unchecked; every id
+// of the official XML now has its checksum checked.
+TEST_F(ParserTest, StandardButUntypedIdIsCheckedByItsCrc) {
+  const MessageCheck* set_mode = find_standard_check(11);
+  ASSERT_NE(set_mode, nullptr);
+  EXPECT_EQ(set_mode->crc_extra, 89);
+  EXPECT_EQ(set_mode->min_length, 6);
+  EXPECT_EQ(set_mode->flags, MessageCheck::kHasTargetSystem);
+  EXPECT_EQ(set_mode->target_system_offset, 4);
+  ASSERT_EQ(set_.find(11u), nullptr);  // not typed: this test is about the table
+  const std::vector<uint8_t> payload = {1, 0, 0, 0, 7, 1};
+  FrameBuffer buf;
+  FrameParser parser(set_);
+  const std::size_t bad = encoder_.encode_raw(11, set_mode->crc_extra ^ 0x5A, payload, 6, buf);
+  EXPECT_TRUE(parse({buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(bad)}, parser).empty());
+  EXPECT_EQ(parser.stats().crc_errors, 1u);
+  EXPECT_EQ(parser.stats().unverified, 0u);
+  const std::size_t good = encoder_.encode_raw(11, set_mode->crc_extra, payload, 6, buf);
+  auto frames = parse({buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(good)}, parser);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].desc, nullptr);
+  EXPECT_EQ(frames[0].check, set_mode);
+  EXPECT_EQ(parser.stats().untyped_frames, 1u);
+  EXPECT_EQ(parser.stats().unknown_ids, 0u);
+}
+
+TEST_F(ParserTest, TheStandardTableIsSortedAndHoldsEveryTypedMessage) {
+  const auto& table = msg::kStandardChecks;
+  EXPECT_GT(table.size(), 200u);
+  for (std::size_t i = 1; i < table.size(); ++i) EXPECT_LT(table[i - 1].id, table[i].id);
+  for (const auto* desc : set_.all()) {
+    const MessageCheck* c = find_standard_check(desc->id);
+    ASSERT_NE(c, nullptr) << desc->name;
+    EXPECT_EQ(c->crc_extra, desc->crc_extra) << desc->name;
+    EXPECT_EQ(c->min_length, desc->min_length) << desc->name;
+    EXPECT_EQ(c->max_length, desc->max_length) << desc->name;
+  }
+  EXPECT_EQ(find_standard_check(60001), nullptr);  // outside the XML: the unknown-id rule
+}
+
 TEST_F(ParserTest, MavlinkV1FramesParse) {
   FrameEncoder v1(3, 4, Version::V1);
   msg::Heartbeat hb;

@@ -94,6 +94,30 @@ void check_all(const MessageSet& from_xml, const auto& raw, TypeList<Ms...>) {
 
 TEST_F(XmlConformance, EveryCompiledMessageMatchesTheOfficialDefinition) { check_all(from_xml_, raw_, msg::All{}); }
 
+// The generated table of every message (message_check.h) against the XML as the dialect loader reads it.
+TEST_F(XmlConformance, EveryMessageOfTheXmlIsInTheCheckTable) {
+  EXPECT_EQ(msg::kStandardChecks.size(), from_xml_.size());
+  for (const MessageDesc* xml : from_xml_.all()) {
+    SCOPED_TRACE(xml->name);
+    const MessageCheck* c = find_standard_check(xml->id);
+    ASSERT_NE(c, nullptr);
+    EXPECT_EQ(c->crc_extra, xml->crc_extra);
+    EXPECT_EQ(c->min_length, xml->min_length);
+    EXPECT_EQ(c->max_length, xml->max_length);
+    const FieldDesc* system = xml->field("target_system");
+    if (system == nullptr) system = xml->field("target");
+    const FieldDesc* component = xml->field("target_component");
+    EXPECT_EQ((c->flags & MessageCheck::kHasTargetSystem) != 0, system != nullptr);
+    EXPECT_EQ((c->flags & MessageCheck::kHasTargetComponent) != 0, component != nullptr);
+    if (system != nullptr) {
+      EXPECT_EQ(c->target_system_offset, system->offset);
+    }
+    if (component != nullptr) {
+      EXPECT_EQ(c->target_component_offset, component->offset);
+    }
+  }
+}
+
 TEST_F(XmlConformance, TheWholeDialectLoadsWithPlausibleCrcExtras) {
   EXPECT_GT(from_xml_.size(), 200u);
   EXPECT_EQ(from_xml_.find("HEARTBEAT")->crc_extra, 50);

@@ -101,3 +101,34 @@ TEST(UdpEndpoint, QueueBatchesSeveralFramesIntoOneDatagram) {
 
 }  // namespace
 }  // namespace hitl::net
+
+namespace hitl::net {
+namespace {
+
+// Issue 27: loss has to be told apart: what the kernel dropped for a full receive buffer is
+// counted (SO_RXQ_OVFL), and the buffers granted are readable.
+TEST(UdpEndpoint, CountsWhatTheKernelDroppedForAFullReceiveBuffer) {
+  UdpEndpoint::Config c;
+  c.bind_address = "127.0.0.1";
+  c.receive_buffer_bytes = 1;  // the kernel's minimum: a few datagrams
+  c.name = "small";
+  auto small = UdpEndpoint::open(c);
+  ASSERT_TRUE(small.ok()) << small.error().message;
+  EXPECT_LT(small->buffer_sizes().receive_bytes, 64 * 1024);
+  EXPECT_GT(small->buffer_sizes().send_bytes, 0);
+  auto sender = open(0, PartnerPolicy::Fixed, small->local_address());
+  const std::vector<uint8_t> datagram(1000, 0x42);
+  int sent = 0;
+  for (int i = 0; i < 200; ++i) sent += sender.send(datagram).ok();
+  ASSERT_GT(sent, 100);
+  uint64_t read = 0;
+  while (receive_within(*small, 200)) ++read;
+  EXPECT_LT(read, static_cast<uint64_t>(sent));
+  // The kernel tells its running count with each datagram it queues: the next one says it.
+  ASSERT_TRUE(sender.send(datagram).ok());
+  ASSERT_TRUE(receive_within(*small, 1000));
+  EXPECT_EQ(read + 1 + small->stats().kernel_rx_drops, static_cast<uint64_t>(sent) + 1);
+}
+
+}  // namespace
+}  // namespace hitl::net

@@ -6,6 +6,7 @@
 
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_check.h"
 #include "base/mavlink/message_set.h"
 #include "base/mavlink/messages.h"
 #include "engine/bridge/endpoint_spec.h"
@@ -19,10 +20,12 @@ namespace msg = mavlink::msg;
 struct Sink {
   std::vector<std::vector<uint8_t>> frames;
   std::vector<std::optional<net::SocketAddress>> excepts;
+  std::vector<std::vector<net::SocketAddress>> onlys;
   Sender sender() {
-    return [this](std::span<const uint8_t> b, const std::optional<net::SocketAddress>& except) {
+    return [this](std::span<const uint8_t> b, const Delivery& to) {
       frames.emplace_back(b.begin(), b.end());
-      excepts.push_back(except);
+      excepts.push_back(to.except);
+      onlys.push_back(to.only);
     };
   }
 };
@@ -133,6 +136,65 @@ TEST_F(RouterTest, HubLinksReachTheirOtherPeersButNotTheSender) {
   ASSERT_EQ(board.frames.size(), 1u);
   ASSERT_EQ(clients.frames.size(), 1u);
   EXPECT_EQ(clients.excepts[0], *peer);
+}
+
+// Issue 27: a command from client A targeted at client B (both on the shared client port) reached
+// every client but A; the hub now remembers which address showed which sysid/compid.
+TEST_F(RouterTest, ATargetedFrameOnTheHubGoesOnlyToThePeerThatShowedTheTarget) {
+  Router r;
+  Sink board, clients;
+  r.add_link("board", board.sender());
+  const auto lc = r.add_link("clients", clients.sender(), /*hub=*/true);
+  const auto a = net::SocketAddress::parse("127.0.0.1:40001", "a").value();
+  const auto b = net::SocketAddress::parse("127.0.0.1:40002", "b").value();
+  const auto c = net::SocketAddress::parse("127.0.0.1:40003", "c").value();
+  r.route(frame(msg::Heartbeat{}, 200, 1), lc, 0.0, a);
+  r.route(frame(msg::Heartbeat{}, 201, 1), lc, 0.0, b);
+  r.route(frame(msg::Heartbeat{}, 202, 1), lc, 0.0, c);
+  EXPECT_EQ(r.peer_systems(lc), 3u);
+  const std::size_t before = clients.frames.size();
+  r.route(frame(command_to(201, 1), 200, 1), lc, 0.0, a);
+  ASSERT_EQ(clients.frames.size(), before + 1);
+  EXPECT_EQ(clients.onlys.back(), std::vector<net::SocketAddress>{b});
+  EXPECT_EQ(board.frames.size(), 3u);  // the board has not shown 201: not sent there
+  // Component 0: any component of that system; a broadcast still reaches every other peer.
+  r.route(frame(command_to(201, 0), 200, 1), lc, 0.0, a);
+  EXPECT_EQ(clients.onlys.back(), std::vector<net::SocketAddress>{b});
+  r.route(frame(msg::Heartbeat{}, 200, 1), lc, 0.0, a);
+  EXPECT_TRUE(clients.onlys.back().empty());
+  // From the board to a client's system: that client only.
+  const auto lb = LinkId{0};
+  r.route(frame(command_to(202, 1), 1, 1), lb, 0.0);
+  EXPECT_EQ(clients.onlys.back(), std::vector<net::SocketAddress>{c});
+  EXPECT_FALSE(clients.excepts.back().has_value());
+}
+
+TEST_F(RouterTest, AStandardIdWithoutATypeIsTargetedByTheXmlsOffsets) {
+  // SET_MODE (#11) is not typed in hitl; its target_system sits at payload offset 4.
+  mavlink::FrameEncoder enc(255, 190);
+  mavlink::FrameBuffer buf;
+  const std::vector<uint8_t> payload = {1, 0, 0, 0, 42, 1};
+  const std::size_t n = enc.encode_raw(11, mavlink::find_standard_check(11)->crc_extra, payload, 6, buf);
+  std::optional<mavlink::Frame> f;
+  parser_.parse_datagram({buf.data(), n}, [&](const mavlink::Frame& got) { f = got; });
+  ASSERT_TRUE(f);
+  EXPECT_EQ(target_of(*f), std::make_pair(uint8_t{42}, uint8_t{0}));
+}
+
+TEST_F(RouterTest, AHubRemembersABoundedNumberOfPeerSystemsTheStalestGoFirst) {
+  Router r;
+  Sink board, clients;
+  r.add_link("board", board.sender());
+  const auto lc = r.add_link("clients", clients.sender(), /*hub=*/true);
+  for (int i = 0; i < 600; ++i) {
+    const auto peer = net::SocketAddress::parse("127.0.0.1:" + std::to_string(20000 + i), "p").value();
+    r.route(frame(msg::Heartbeat{}, 9, 9), lc, 0.0, peer);
+  }
+  EXPECT_EQ(r.peer_systems(lc), Router::kMaxSystemsPerLink);
+  EXPECT_EQ(r.counters(lc).peers_forgotten, 600u - Router::kMaxSystemsPerLink);
+  r.route(frame(command_to(9, 9), 1, 1), 0, 0.0);
+  ASSERT_EQ(clients.onlys.back().size(), Router::kMaxSystemsPerLink);
+  EXPECT_EQ(clients.onlys.back().back().port(), 20599);  // the newest kept
 }
 
 TEST_F(RouterTest, ALinkLearnsABoundedNumberOfSystems) {
