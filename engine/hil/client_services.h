@@ -47,6 +47,9 @@ class ClientServices {
   /// Sends what the step queued for clients and says once when a bound was hit.
   void serve(EventSink& events);
 
+  /// True when send_status() would send (clients are on and a second has passed): the caller
+  /// builds the status only then, not every step.
+  bool status_due(double now_s) const { return clients_.has_value() && now_s >= next_status_wall_s_; }
   /// Once a second of wall time: HEARTBEAT (STANDBY while paused) and the NAMED_VALUE_* status.
   void send_status(double now_s, double start_wall_s, const SessionStatus& status);
   /// A STATUSTEXT from the simulator's identity (a fault started or ended): to every client, where

@@ -113,28 +113,37 @@ void StackLink::release_delayed(double now_s) {
 }
 
 void StackLink::send_batch() {
+  // The counts are zeroed, not erased: the few ids a step sends keep their entries, so a step
+  // allocates nothing here.
   if (!link_->connected()) {  // PX4 SITL not (or no longer) connected: nothing leaves, nothing is counted
     (void)link_->flush();
-    batch_.clear();
+    for (auto& entry : batch_) entry.second = 0;
     return;
   }
   const auto st = link_->flush();
-  for (const auto& [id, n] : batch_) {
+  for (auto& [id, n] : batch_) {
+    if (n == 0) continue;
     if (st) traffic_.count_sent(id, n);
     else if (!link_->closed()) traffic_.count_failed(n, st.error().message);  // a lost stream is gone(), not a send error
+    n = 0;
   }
-  batch_.clear();
 }
 
 void StackLink::drain(double now_s, const FrameHandler& on_frame) {
+  // One pointer captured: the handler fits std::function's small buffer, no allocation per step.
+  struct Context {
+    StackLink& self;
+    const FrameHandler& on_frame;
+    double now_s;
+  } c{*this, on_frame, now_s};
   link_->drain(
       parser_,
-      [&](const mavlink::Frame& f) {
-        recording_.record(f.bytes());
-        traffic_.count_received(f.msgid);
-        on_frame(f, now_s);
+      [&c](const mavlink::Frame& f) {
+        c.self.recording_.record(f.bytes());
+        c.self.traffic_.count_received(f.msgid);
+        c.on_frame(f, c.now_s);
         if (f.is<mavlink::msg::HilActuatorControls>())
-          actuators_.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, clock_.unpaused_s(now_s));
+          c.self.actuators_.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, c.self.clock_.unpaused_s(c.now_s));
       },
       kMaxDatagramsPerDrain);
 }
