@@ -20,7 +20,7 @@ _hitl_options() {
     case "$1" in
         '') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
         'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --vehicle --world --seed --no-noise -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --version --json -v --verbose -q --quiet --dialect --config' ;;
         'target') echo '-h --help --bind --hil-port --gcs-port --vio-port --lockstep --duration --fault --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params show') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -84,6 +84,7 @@ _hitl_value() {
         'sim|--duration') echo 'text' ;;
         'sim|--lockstep-timeout') echo 'text' ;;
         'sim|--actuator-timeout') echo 'text' ;;
+        'sim|--spin-us') echo 'text' ;;
         'sim|--vehicle') echo 'file' ;;
         'sim|--world') echo 'file' ;;
         'sim|--seed') echo 'text' ;;

@@ -53,7 +53,10 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     if (!w) return w.error();
     s.recording = Recording(std::move(w.value()));
   }
-  s.pacer.emplace(config.world.physics.step_s, config.speed);  // one step of simulated time per tick
+  if (!std::isfinite(config.spin_us) || config.spin_us < 0 || config.spin_us > Pacer::kMaxSpin_s * 1e6)
+    return Error::input("the spin (spin_us) must be 0 to " + std::to_string(static_cast<int>(Pacer::kMaxSpin_s * 1e6)) + " us");
+  // One step of simulated time per tick.
+  s.pacer.emplace(config.world.physics.step_s, config.speed, config.spin_us * 1e-6);
   s.paths.emplace(config);
   s.fault_schedule = faults::FaultSchedule(config.faults);
   return std::unique_ptr<Session>(new Session(std::move(impl)));
@@ -126,7 +129,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       break;
     }
     const double now = monotonic_s();
-    if (now >= next_publish_s) {  // the snapshot, ten times a second
+    if (now >= next_publish_s && s.snapshot_read.exchange(false)) {  // ten times a second, while it is read
       next_publish_s = now + 0.1;
       s.publish();
     }
@@ -135,6 +138,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       s.roll_window();
       s.publish();
       observer.on_status(snapshot());
+      s.snapshot_read.store(false);  // that read was served fresh
     }
     s.wait_next_tick(stop);
   }
@@ -150,6 +154,7 @@ void Session::set_paused(bool paused) { impl_->pause_wanted.store(paused); }
 void Session::request_reset() { impl_->reset_wanted.store(true); }
 
 SessionSnapshot Session::snapshot() const {
+  impl_->snapshot_read.store(true);
   std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);
   return impl_->published;
 }
