@@ -8,6 +8,8 @@
 #include "base/common/clock.h"
 #include "base/mavlink/messages.h"
 #include "engine/net/tcp_links.h"
+
+#include <poll.h>
 #include "engine/net/udp_link.h"
 
 namespace hitl::hil {
@@ -176,12 +178,20 @@ void StackLink::lockstep_wait(EventSink& events, const std::function<void()>& dr
   const double deadline = monotonic_s() + config_.lockstep_timeout_s;
   while (actuators_.take_new() == 0 && !gone()) {
     release_delayed(monotonic_s());  // hil-delay: the HIL_SENSOR awaited may still be held
+    // A stack on this host answers within microseconds: poll for it a moment before sleeping.
+    pollfd fd{link_->fd(), POLLIN, 0};
+    if (fd.fd >= 0 && busy_poll_.spin({&fd, 1})) {
+      drain_all();
+      if (actuators_.take_new() > 0) break;
+      continue;
+    }
     const double left_s = deadline - monotonic_s();
     double wait_s = left_s;
     if (const auto due_s = next_delayed_s()) wait_s = std::min(wait_s, std::max(0.0, *due_s - monotonic_s()));
     if (left_s <= 0 || !link_->wait_readable(static_cast<int>(std::ceil(wait_s * 1000)))) {
       if (monotonic_s() < deadline) continue;
       ++lockstep_counters_.fallbacks;
+      busy_poll_.on_nothing();
       stalled_ = true;
       actuators_.take_heard();
       if (!warned_lockstep_) {
