@@ -129,7 +129,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       break;
     }
     const double now = monotonic_s();
-    if (now >= next_publish_s && s.snapshot_read.exchange(false)) {  // ten times a second, while it is read
+    if (now >= next_publish_s) {  // the snapshot, ten times a second
       next_publish_s = now + 0.1;
       s.publish();
     }
@@ -138,7 +138,6 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       s.roll_window();
       s.publish();
       observer.on_status(snapshot());
-      s.snapshot_read.store(false);  // that read was served fresh
     }
     s.wait_next_tick(stop);
   }
@@ -154,7 +153,6 @@ void Session::set_paused(bool paused) { impl_->pause_wanted.store(paused); }
 void Session::request_reset() { impl_->reset_wanted.store(true); }
 
 SessionSnapshot Session::snapshot() const {
-  impl_->snapshot_read.store(true);
   std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);
   return impl_->published;
 }

@@ -38,9 +38,7 @@ class Session {
   /// blow-up ends the run with an Error naming the step.
   Expected<EndReason> run(const std::atomic<bool>& stop, Observer& observer);
 
-  /// Thread-safe: the latest snapshot. It is built once a second (the status), at the end, and up to
-  /// 10 times a second while someone calls this (a dashboard): a first call after a quiet spell
-  /// may return one up to a second old; the session does no snapshot work nobody reads.
+  /// Thread-safe: the latest snapshot (published about 10 times a second, and at the end).
   SessionSnapshot snapshot() const;
 
   /// Thread-safe operator controls, taken at the next step. Paused, the model holds and nothing is

@@ -61,7 +61,6 @@ struct Session::Impl {
 
   mutable std::mutex snapshot_mutex;
   SessionSnapshot published;
-  mutable std::atomic<bool> snapshot_read{false};  ///< snapshot() was called since the last publish
 
   /// Simulated time since the session started, across resets.
   double sim_time_s() const { return time_offset_s + model->state().time_s; }
