@@ -3,8 +3,9 @@
 //  1. real time: `hitl sim` with VIO and a truth client on, against a stand-in board that answers
 //     each HIL_SENSOR with HIL_ACTUATOR_CONTROLS (time_usec echoed, flags 0x0F) as a board in HIL
 //     mode does. HIL_SENSOR inter-arrival from the kernel's receive timestamps (SO_TIMESTAMPNS):
-//     mean, std, p99, max; the session's CPU as % of one core and its context switches per tick
-//     (from /proc/PID/task/*/schedstat and status, between its first and last status line).
+//     mean, std, p99, max; the session's CPU as % of one core, its wake-ups (voluntary context
+//     switches) and preemptions (involuntary ones) per tick, from /proc/PID/task/*/schedstat and
+//     status between its first and last status line. docs/sim.md "Measured" has the JSON fields.
 //  2. lockstep as fast as possible (--lockstep --speed 0) against the same stand-in: real-time
 //     factor and hitl's CPU per step.
 //  3. lockstep as fast as possible against `hitl target --lockstep`: real-time factor and the CPU
