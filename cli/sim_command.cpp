@@ -276,6 +276,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_option("--actuator-timeout", c.actuator_timeout_s, "Motors stop when no HIL_ACTUATOR_CONTROLS came for this long, s")
       ->capture_default_str()->check(positive_number())->group(timing);
   sub->add_flag("--realtime", c.realtime, "Ask for SCHED_FIFO and mlockall (says so when not permitted)")->group(timing);
+  sub->add_option("--spin-us", c.spin_us,
+                  "Spin on the clock for the last US microseconds before each tick instead of sleeping (less "
+                  "jitter at the board, that much more CPU); 0..2000")
+      ->capture_default_str()->check(number_in(0, 2000))->type_name("US")->group(timing);
 
   const char* model = "Model";
   sub->add_option("--vehicle", opt->vehicle_file, "Vehicle JSON over the compiled-in x500 (docs/engine.md)")

@@ -219,7 +219,13 @@ Expected<Board::EndReason> Board::run(const std::atomic<bool>& stop, Observer& o
       const uint64_t next = std::min(s.split.next_due_us(), s.now_us + kMaxWait_us);
       timeout_ms = static_cast<int>(next > s.now_us ? (next - s.now_us + 999) / 1000 : 0);
     }
-    ::poll(fds, n, timeout_ms);
+    // Lockstep: hitl sim sends the next HIL_SENSOR within microseconds of the answer; poll for it
+    // a moment before sleeping (bounded and adaptive: an idle session costs nothing).
+    if (s.config.lockstep) {
+      if (!s.busy_poll.spin({fds, n}) && ::poll(fds, n, timeout_ms) == 0) s.busy_poll.on_nothing();
+    } else {
+      ::poll(fds, n, timeout_ms);
+    }
     if (s.on_wall_clock()) s.now_us = monotonic_us() - s.start_us;
     auto handler = [&](const mavlink::Frame& f, MavlinkInstance& inst) { s.handle_frame(f, inst); };
     s.hil->poll(handler);

@@ -24,6 +24,7 @@
 #include "emulator/mavlink_instance.h"
 #include "emulator/param_store.h"
 #include "emulator/shell.h"
+#include "engine/net/busy_poll.h"
 #include "engine/net/udp_endpoint.h"
 #include "target/core/dsp_hitl.h"
 #include "target/core/hil_split.h"
@@ -43,6 +44,7 @@ struct Board::Impl {
   DspHitl dsp;
   std::optional<Shell> shell;
   LockstepClock lockstep_clock;
+  net::AdaptiveBusyPoll busy_poll;  ///< lockstep: a moment's polling for the next HIL_SENSOR before sleeping
 
   uint64_t start_us = 0;
   uint64_t now_us = 0;  ///< board time since start

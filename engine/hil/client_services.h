@@ -47,6 +47,11 @@ class ClientServices {
   /// Sends what the step queued for clients and says once when a bound was hit.
   void serve(EventSink& events);
 
+  /// True when send_status() would send (clients are on or a recording runs, and a second has
+  /// passed): the caller builds the status only then, not every step.
+  bool status_due(double now_s) const {
+    return (clients_.has_value() || recording_.active()) && now_s >= next_status_wall_s_;
+  }
   /// The session's own frames below (status, truth, announcements) go to the clients and into the
   /// recording, so that a recording holds the truth and the session's status (docs/report.md).
   /// Once a second of wall time: HEARTBEAT (STANDBY while paused) and the NAMED_VALUE_* status.

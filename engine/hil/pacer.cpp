@@ -1,5 +1,6 @@
 #include "engine/hil/pacer.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 
@@ -36,7 +37,10 @@ double Pacer::next_due_s() const {
   return to_s(add_s(anchor_, static_cast<double>(k_ + 1) * wall_period_s_));
 }
 
-Pacer::Pacer(double period_s, double speed) : wall_period_s_(speed > 0 ? period_s / speed : 0.0), paced_(speed > 0) {}
+Pacer::Pacer(double period_s, double speed, double spin_s)
+    : wall_period_s_(speed > 0 ? period_s / speed : 0.0),
+      paced_(speed > 0),
+      spin_s_(std::clamp(spin_s, 0.0, std::min(kMaxSpin_s, wall_period_s_))) {}
 
 void Pacer::start() {
   clock_gettime(CLOCK_MONOTONIC, &anchor_);
@@ -62,15 +66,18 @@ void Pacer::wait_next(const std::atomic<bool>* stop) {
     return;
   }
   // Sleep in slices of at most kMaxSlice_s so that a stop (Ctrl-C, q) is seen within one slice
-  // even at a slow --speed, where one step can be seconds of wall time.
+  // even at a slow --speed, where one step can be seconds of wall time; with a spin, only until
+  // spin_s_ before the deadline.
+  const timespec wake = add_s(due, -spin_s_);
   for (;;) {
     if (stop != nullptr && stop->load()) return;
     clock_gettime(CLOCK_MONOTONIC, &now);
-    if (to_s(now) >= to_s(due)) return;
+    if (to_s(now) >= to_s(wake)) break;
     timespec slice = add_s(now, kMaxSlice_s);
-    if (to_s(slice) > to_s(due)) slice = due;
+    if (to_s(slice) > to_s(wake)) slice = wake;
     clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &slice, nullptr);
   }
+  while (to_s(now) < to_s(due)) clock_gettime(CLOCK_MONOTONIC, &now);  // the spin (none when spin_s_ is 0)
 }
 
 }  // namespace hitl::hil

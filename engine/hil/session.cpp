@@ -57,7 +57,10 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     Recording* recording = &s.recording;
     s.pilot_record.emplace([recording](std::span<const uint8_t> frame) { recording->record(frame); }, config.sysid, config.protocol);
   }
-  s.pacer.emplace(config.world.physics.step_s, config.speed);  // one step of simulated time per tick
+  if (!std::isfinite(config.spin_us) || config.spin_us < 0 || config.spin_us > Pacer::kMaxSpin_s * 1e6)
+    return Error::input("the spin (spin_us) must be 0 to " + std::to_string(static_cast<int>(Pacer::kMaxSpin_s * 1e6)) + " us");
+  // One step of simulated time per tick.
+  s.pacer.emplace(config.world.physics.step_s, config.speed, config.spin_us * 1e-6);
   s.paths.emplace(config);
   s.fault_schedule = faults::FaultSchedule(config.faults);
   return std::unique_ptr<Session>(new Session(std::move(impl)));

@@ -66,6 +66,7 @@ struct SessionConfig {
   bool lockstep = false;                  ///< --lockstep / --enable-lockstep
   double lockstep_timeout_s = 0.5;        ///< --lockstep-timeout
   bool realtime = false;                  ///< --realtime: SCHED_FIFO + mlockall when permitted
+  double spin_us = 0;                     ///< --spin-us: the last part of each tick's wait spent spinning (0..2000)
   double actuator_timeout_s = 0.5;        ///< --actuator-timeout
   double no_answer_warning_s = 2.0;       ///< say so when nothing came back this long after the first HIL_SENSOR
 

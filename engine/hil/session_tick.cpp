@@ -21,7 +21,7 @@ Status Session::Impl::step(EventSink& events) {
   // Drain: the flight stack's link and the client port; then what clients are owed this step.
   const double now_s = monotonic_s();
   drain(now_s);
-  services->send_status(now_s, start_wall_s, status(now_s));
+  if (services->status_due(now_s)) services->send_status(now_s, start_wall_s, status(now_s));  // once a second
   services->serve(events);
   say_record_failure(events);
   if (take_controls(events)) return Ok{};  // paused: the model holds, nothing is sent

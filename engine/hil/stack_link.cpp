@@ -8,6 +8,8 @@
 #include "base/common/clock.h"
 #include "base/mavlink/messages.h"
 #include "engine/net/tcp_links.h"
+
+#include <poll.h>
 #include "engine/net/udp_link.h"
 
 namespace hitl::hil {
@@ -113,28 +115,37 @@ void StackLink::release_delayed(double now_s) {
 }
 
 void StackLink::send_batch() {
+  // The counts are zeroed, not erased: the few ids a step sends keep their entries, so a step
+  // allocates nothing here.
   if (!link_->connected()) {  // PX4 SITL not (or no longer) connected: nothing leaves, nothing is counted
     (void)link_->flush();
-    batch_.clear();
+    for (auto& entry : batch_) entry.second = 0;
     return;
   }
   const auto st = link_->flush();
-  for (const auto& [id, n] : batch_) {
+  for (auto& [id, n] : batch_) {
+    if (n == 0) continue;
     if (st) traffic_.count_sent(id, n);
     else if (!link_->closed()) traffic_.count_failed(n, st.error().message);  // a lost stream is gone(), not a send error
+    n = 0;
   }
-  batch_.clear();
 }
 
 void StackLink::drain(double now_s, const FrameHandler& on_frame) {
+  // One pointer captured: the handler fits std::function's small buffer, no allocation per step.
+  struct Context {
+    StackLink& self;
+    const FrameHandler& on_frame;
+    double now_s;
+  } c{*this, on_frame, now_s};
   link_->drain(
       parser_,
-      [&](const mavlink::Frame& f) {
-        recording_.record(f.bytes());
-        traffic_.count_received(f.msgid);
-        on_frame(f, now_s);
+      [&c](const mavlink::Frame& f) {
+        c.self.recording_.record(f.bytes());
+        c.self.traffic_.count_received(f.msgid);
+        c.on_frame(f, c.now_s);
         if (f.is<mavlink::msg::HilActuatorControls>())
-          actuators_.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, clock_.unpaused_s(now_s));
+          c.self.actuators_.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, c.self.clock_.unpaused_s(c.now_s));
       },
       kMaxDatagramsPerDrain);
 }
@@ -167,12 +178,20 @@ void StackLink::lockstep_wait(EventSink& events, const std::function<void()>& dr
   const double deadline = monotonic_s() + config_.lockstep_timeout_s;
   while (actuators_.take_new() == 0 && !gone()) {
     release_delayed(monotonic_s());  // hil-delay: the HIL_SENSOR awaited may still be held
+    // A stack on this host answers within microseconds: poll for it a moment before sleeping.
+    pollfd fd{link_->fd(), POLLIN, 0};
+    if (fd.fd >= 0 && busy_poll_.spin({&fd, 1})) {
+      drain_all();
+      if (actuators_.take_new() > 0) break;
+      continue;
+    }
     const double left_s = deadline - monotonic_s();
     double wait_s = left_s;
     if (const auto due_s = next_delayed_s()) wait_s = std::min(wait_s, std::max(0.0, *due_s - monotonic_s()));
     if (left_s <= 0 || !link_->wait_readable(static_cast<int>(std::ceil(wait_s * 1000)))) {
       if (monotonic_s() < deadline) continue;
       ++lockstep_counters_.fallbacks;
+      busy_poll_.on_nothing();
       stalled_ = true;
       actuators_.take_heard();
       if (!warned_lockstep_) {

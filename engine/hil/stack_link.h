@@ -22,6 +22,7 @@
 #include "engine/hil/traffic.h"
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/frame_parser.h"
+#include "engine/net/busy_poll.h"
 #include "engine/net/link.h"
 
 namespace hitl::hil {
@@ -116,6 +117,7 @@ class StackLink {
   LinkFaults link_faults_;
   std::map<uint32_t, uint64_t> batch_;  ///< messages in what flush() sends: counted as sent once it is
   LockstepCounters lockstep_counters_;
+  net::AdaptiveBusyPoll busy_poll_;  ///< lockstep: a moment's polling for the answer before sleeping
   uint64_t routed_to_board_ = 0;
   bool stalled_ = false;  ///< a wait ran out: step on without waiting until the stack is heard again
   bool warned_lockstep_ = false;

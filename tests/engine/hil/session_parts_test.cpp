@@ -7,6 +7,7 @@
 #include <limits>
 #include <thread>
 
+#include "base/common/clock.h"
 #include "engine/hil/actuator_input.h"
 #include "engine/hil/pacer.h"
 #include "engine/hil/sensor_messages.h"
@@ -115,6 +116,31 @@ TEST(Pacer, ReanchorsAfterAStallLongerThanTheCatchUpWindow) {
   const double t0 = now_s();
   pacer.wait_next();  // re-anchored: the next tick is one period away, not already due
   EXPECT_GT(now_s() - t0, 0.002);
+}
+
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
+}
+
+TEST(Pacer, SpinsTheLastPartOfEachWaitAndNeverReturnsBeforeTheDeadline) {
+  // 20 ticks of 4 ms, the last 2 ms of each spent spinning: never early, and the spin shows as
+  // this thread's CPU time (a sleeping wait has next to none).
+  auto cpu_of = [](double spin_s) {
+    Pacer pacer(0.004, 1.0, spin_s);
+    pacer.start();
+    const double cpu0 = thread_cpu_s();
+    for (int k = 0; k < 20; ++k) {
+      const double due_s = pacer.next_due_s();
+      pacer.wait_next();
+      EXPECT_GE(hitl::monotonic_s(), due_s - 1e-7) << "tick " << k;
+    }
+    return thread_cpu_s() - cpu0;
+  };
+  const double sleeping_s = cpu_of(0.0);
+  const double spinning_s = cpu_of(0.002);
+  EXPECT_GT(spinning_s, sleeping_s + 0.005) << "sleeping " << sleeping_s << " s, spinning " << spinning_s << " s";
 }
 
 TEST(Pacer, SpeedZeroNeverSleeps) {
