@@ -55,6 +55,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   }
   s.pacer.emplace(config.world.physics.step_s, config.speed);  // one step of simulated time per tick
   s.paths.emplace(config);
+  s.loop_latency.emplace(s.stack->lockstep());
   s.fault_schedule = faults::FaultSchedule(config.faults);
   return std::unique_ptr<Session>(new Session(std::move(impl)));
 }
