@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "base/contract/data_rates.h"
 #include "engine/vehicle/patient_link.h"
 #include "tui/collect.h"
 #include "tui/draw.h"
@@ -103,6 +104,18 @@ void SimDashboard::perform(Action action, const std::string& argument) {
   }
 }
 
+namespace {
+
+/// A loop latency figure (engine/hil/loop_latency.h) in ms; degraded above one step in lockstep,
+/// where the board answers each step (outside it the board's own stream sets the pace).
+LinkField loop_latency_field(const char* label, const hil::LoopLatencySummary& l, double value_us) {
+  if (l.latency.count == 0) return {label, "-"};
+  const bool late = l.lockstep && value_us > kStepPeriod_s * 1e6;
+  return {label, format("%.2f ms", value_us / 1000.0), late ? Health::Degraded : Health::Good};
+}
+
+}  // namespace
+
 DashboardModel SimDashboard::collect() {
   const hil::SessionSnapshot s = session_.snapshot();
   DashboardModel m;
@@ -159,6 +172,7 @@ DashboardModel SimDashboard::collect() {
   m.link = {
       {"rtf", format("%.2f", s.recent_real_time_factor)},
       {"late", count(s.late_ticks), flag(s.late_ticks)},
+      loop_latency_field("loop p99", s.loop_latency, s.loop_latency.latency.p99_us),
       {"out", count(sum(s.sent))},
       {"in", count(sum(s.received))},
       {"ignored", count(ignored), flag(ignored)},
@@ -174,6 +188,8 @@ DashboardModel SimDashboard::collect() {
       {"resets", count(s.resets)},
       {"imu sat", count(s.imu_accel_saturated + s.imu_gyro_saturated), flag(s.imu_accel_saturated + s.imu_gyro_saturated)},
       {"touchdowns", count(s.touchdowns)},
+      loop_latency_field("loop p50", s.loop_latency, s.loop_latency.latency.p50_us),
+      loop_latency_field("loop max", s.loop_latency, s.loop_latency.latency.max_us),
   };
   return m;
 }
