@@ -38,12 +38,24 @@ Expected<RecordedSession> load_recording(const std::string& path, uint64_t max_b
   if (static_cast<uint64_t>(st.st_size) > max_bytes)
     return Error::input(name + " is " + std::to_string(static_cast<uint64_t>(st.st_size) >> 20) + " MiB, more than the " +
                         std::to_string(max_bytes >> 20) + " MiB a replay reads (about 50 minutes at 250 Hz): record shorter sessions");
+  const auto messages = mavlink::MessageSet::compiled();
+  // First the identities: the board is who sends HIL_ACTUATOR_CONTROLS, the simulator who sends
+  // HIL_SENSOR (the board's HEARTBEATs come before its first answer).
+  std::optional<uint8_t> board_sysid;
+  {
+    auto first = mavlink::TlogReader::open(path);
+    if (!first) return first.error().prefixed(name + ": ");
+    mavlink::FrameParser parser(messages);
+    mavlink::TlogRecord record;
+    while (!board_sysid && first->next(record))
+      parser.parse_datagram(record.frame, [&](const mavlink::Frame& f) {
+        if (f.is<msg::HilActuatorControls>() && !board_sysid) board_sysid = f.sysid;
+      });
+  }
   auto reader = mavlink::TlogReader::open(path);
   if (!reader) return reader.error().prefixed(name + ": ");
-  const auto messages = mavlink::MessageSet::compiled();
   mavlink::FrameParser parser(messages);
   RecordedSession s;
-  std::optional<uint8_t> board_sysid;
   std::vector<OutgoingFrame> before_first;  // to the board before the first HIL_SENSOR: sent with it
   mavlink::TlogRecord record;
   uint64_t unparsed = 0;
@@ -53,7 +65,6 @@ Expected<RecordedSession> load_recording(const std::string& path, uint64_t max_b
       parsed = true;
       ++s.frames;
       if (f.is<msg::HilActuatorControls>()) {
-        if (!board_sysid) board_sysid = f.sysid;
         if (f.sysid != *board_sysid) return;
         const auto m = f.as<msg::HilActuatorControls>();
         ActuatorSample a;
