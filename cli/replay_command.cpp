@@ -62,6 +62,17 @@ int run_replay(const GlobalOptions& global, const ReplayOptions& opt) {
                 session->vio_frames && opt.config.vio_port ? (", ODOMETRY to port " + std::to_string(opt.config.vio_port)).c_str() : "",
                 opt.config.lockstep ? "lockstep (each step waits for its answer)" : "with the recorded timing");
   log_info(global, line);
+  if (!opt.config.lockstep && session->steps.size() > 1) {
+    const double wall_s = static_cast<double>(session->steps.back().t_unix_us - session->steps.front().t_unix_us) * 1e-6;
+    const double pace = wall_s > 0 ? session->duration_s() / wall_s : 0;
+    if (pace > 1.1 || pace < 0.9) {
+      std::snprintf(line, sizeof line,
+                    "the recording ran at %.1fx real time (%.1f s simulated in %.1f s): replaying it with that timing; "
+                    "a board on its own clock sees its sensors at that pace (--lockstep replays step by step)",
+                    pace, session->duration_s(), wall_s);
+      std::cerr << "hitl replay: warning: " << line << '\n';
+    }
+  }
   const auto& stop = stop_flag_on_signals();
   auto result = replay::run_replay(*session, opt.config, stop, [&](const replay::ReplayProgress& p) {
     if (global.json) {

@@ -9,8 +9,8 @@ namespace {
 
 using Controls = std::array<float, 4>;
 
-/// The answer in effect for each step: by echo, the last answer stamped with the step's time; by
-/// step, the last that arrived in it.
+/// The answer for each step: by echo, the last answer stamped with the step's time; by step, the
+/// last that arrived by then (in it, or held from an earlier step).
 std::vector<std::optional<Controls>> per_step(const std::vector<RecordedStep>& steps, const std::vector<ActuatorSample>& answers,
                                               bool by_echo) {
   std::vector<std::optional<Controls>> out(steps.size());
@@ -19,9 +19,11 @@ std::vector<std::optional<Controls>> per_step(const std::vector<RecordedStep>& s
     for (std::size_t k = 0; k < steps.size(); ++k) index.emplace(steps[k].sensor_time_usec, k);
     for (const auto& a : answers)
       if (auto it = index.find(a.time_usec); it != index.end()) out[it->second] = a.controls;
-  } else {
+  } else {  // a board on its own clock: the controls in effect at each step, held until the next answer
     for (const auto& a : answers)
       if (a.step >= 0 && static_cast<std::size_t>(a.step) < out.size()) out[static_cast<std::size_t>(a.step)] = a.controls;
+    for (std::size_t k = 1; k < out.size(); ++k)
+      if (!out[k]) out[k] = out[k - 1];
   }
   return out;
 }

@@ -1,7 +1,8 @@
 // How a board's actuator outputs in a replay differ from the recording's: per motor the largest
 // and the RMS difference over the steps both have, and the first step where any motor differs by
 // more than a tolerance. Steps are matched by the time_usec echo when the recording's answers echo
-// their HIL_SENSOR (lockstep), else by step: the last answer that arrived in each step. Pure.
+// their HIL_SENSOR (lockstep), else by step: the controls in effect at each step (the last answer
+// that arrived by then, as the simulator flies on them). Pure.
 #pragma once
 
 #include <array>

@@ -59,10 +59,12 @@ TEST(ActuatorCompare, ByStepWhenTheBoardStampsItsOwnClockAndMissingAnswersCount)
   const std::vector<ActuatorSample> now = {answer(999, 0, 0.2f), answer(998, 2, 0.4f)};
   const auto c = compare_actuators(s, rec, now, 0);
   EXPECT_FALSE(c.by_echo);
-  EXPECT_EQ(c.steps_compared, 2u);  // the last answer in each step: 0.2 and 0.4 in both
-  EXPECT_EQ(c.missing, 1u);         // step 1 unanswered in the replay
-  EXPECT_FALSE(c.first_divergence);
-  EXPECT_FALSE(c.identical());
+  EXPECT_EQ(c.steps_compared, 3u);  // the controls in effect at each step: 0.2, 0.3 | 0.2 (held), 0.4
+  EXPECT_EQ(c.missing, 0u);
+  ASSERT_TRUE(c.first_divergence);
+  EXPECT_NEAR(c.first_divergence->t_s, 0.008, 1e-12);  // step 1: 0.3 recorded, 0.2 still in effect
+  const std::vector<ActuatorSample> late = {answer(998, 2, 0.4f)};  // nothing until step 2
+  EXPECT_EQ(compare_actuators(s, rec, late, 0).missing, 2u);
 }
 
 }  // namespace
