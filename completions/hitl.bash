@@ -9,7 +9,7 @@ _hitl_messages='ACTUATOR_OUTPUT_STATUS ATTITUDE ATTITUDE_QUATERNION ATTITUDE_TAR
 # _hitl_commands PATH: the subcommands of a command path ('' is hitl, 'params' is hitl params).
 _hitl_commands() {
     case "$1" in
-        '') echo 'inspect sim target params arm disarm shell fly doctor bridge demo completion' ;;
+        '') echo 'inspect sim target replay params arm disarm shell fly doctor bridge demo completion' ;;
         'params') echo 'show get set diff check export load reset' ;;
         'fly') echo 'takeoff land hold trajectory' ;;
     esac
@@ -22,6 +22,7 @@ _hitl_options() {
         'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
         'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --vehicle --world --seed --no-noise -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --version --json -v --verbose -q --quiet --dialect --config' ;;
         'target') echo '-h --help --bind --hil-port --gcs-port --vio-port --lockstep --duration --fault --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'replay') echo '-h --help -i --target-ip --hil-port --vio-port --local-port --bind --lockstep --lockstep-timeout --record --compare --tolerance --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params show') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params get') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -50,8 +51,8 @@ _hitl_options() {
 # file [PATTERN], dir, messages, message-rates; "optional KIND" when the value may be left out.
 _hitl_value() {
     case "$1|$2" in
-        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'bridge|--dialect'|'demo|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
-        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'bridge|--config'|'demo|--config'|'completion|--config') echo 'file *.toml' ;;
+        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'bridge|--dialect'|'demo|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
+        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'bridge|--config'|'demo|--config'|'completion|--config') echo 'file *.toml' ;;
         'inspect|--bind') echo 'text' ;;
         'inspect|--local-port') echo 'text' ;;
         'inspect|--record') echo 'file *.tlog' ;;
@@ -101,6 +102,14 @@ _hitl_value() {
         'target|--vio-port') echo 'text' ;;
         'target|--duration') echo 'text' ;;
         'target|--fault') echo 'text' ;;
+        'replay|-i'|'replay|--target-ip') echo 'text' ;;
+        'replay|--hil-port') echo 'text' ;;
+        'replay|--vio-port') echo 'text' ;;
+        'replay|--local-port') echo 'text' ;;
+        'replay|--bind') echo 'text' ;;
+        'replay|--lockstep-timeout') echo 'text' ;;
+        'replay|--record') echo 'file *.tlog' ;;
+        'replay|--tolerance') echo 'text' ;;
         'params|--connect'|'params show|--connect'|'params get|--connect'|'params set|--connect'|'params diff|--connect'|'params check|--connect'|'params export|--connect'|'params load|--connect'|'params reset|--connect') echo 'text' ;;
         'params|-i'|'params|--target-ip'|'params show|-i'|'params show|--target-ip'|'params get|-i'|'params get|--target-ip'|'params set|-i'|'params set|--target-ip'|'params diff|-i'|'params diff|--target-ip'|'params check|-i'|'params check|--target-ip'|'params export|-i'|'params export|--target-ip'|'params load|-i'|'params load|--target-ip'|'params reset|-i'|'params reset|--target-ip') echo 'text' ;;
         'params|--port'|'params show|--port'|'params get|--port'|'params set|--port'|'params diff|--port'|'params check|--port'|'params export|--port'|'params load|--port'|'params reset|--port') echo 'text' ;;
@@ -173,6 +182,7 @@ _hitl_value() {
 # _hitl_positional PATH INDEX: how the INDEX-th positional argument (from 0) completes.
 _hitl_positional() {
     case "$1|$2" in
+        'replay|'0) echo 'file *.tlog' ;;
         'params export|'0) echo 'file' ;;
         'params load|'0) echo 'file' ;;
         'fly trajectory|'0) echo 'file' ;;
