@@ -56,7 +56,11 @@ Expected<RecordedSession> load_recording(const std::string& path, uint64_t max_b
   if (!reader) return reader.error().prefixed(name + ": ");
   mavlink::FrameParser parser(messages);
   RecordedSession s;
-  std::vector<OutgoingFrame> before_first;  // to the board before the first HIL_SENSOR: sent with it
+  // To the board after the last step's datagram left (the session sends VIO and truth ODOMETRY
+  // after it): a client's frames forwarded at the next step's start, so in the next datagram, before
+  // its HIL_SENSOR. Also what came before the first HIL_SENSOR.
+  std::vector<OutgoingFrame> carried;
+  bool datagram_left = true;
   mavlink::TlogRecord record;
   uint64_t unparsed = 0;
   while (reader->next(record)) {
@@ -81,20 +85,24 @@ Expected<RecordedSession> load_recording(const std::string& path, uint64_t max_b
           RecordedStep step;
           step.sensor_time_usec = f.as<msg::HilSensor>().time_usec;
           step.t_unix_us = record.time_unix_us;
+          step.frames = std::move(carried);
+          carried.clear();
           step.frames.push_back({Destination::Hil, {f.bytes().begin(), f.bytes().end()}});
-          if (s.steps.empty()) step.frames.insert(step.frames.end(), before_first.begin(), before_first.end());
           s.steps.push_back(std::move(step));
+          datagram_left = false;
           return;
         }
       }
       if (board_sysid && f.sysid == *board_sysid) return;  // the board's own telemetry and answers
       const bool own = !s.steps.empty() && f.sysid == s.simulator_sysid;
+      if (own && f.is<msg::Odometry>()) datagram_left = true;  // VIO and truth go out after the step's datagram
       if (own && to_clients_only(f)) return;
       OutgoingFrame out{f.is<msg::Odometry>() ? Destination::Vio : Destination::Hil, {f.bytes().begin(), f.bytes().end()}};
       if (out.to == Destination::Vio && f.compid != kVioComponentId) return;  // truth to clients
       if (out.to == Destination::Vio) ++s.vio_frames;
       else ++s.other_frames;
-      (s.steps.empty() ? before_first : s.steps.back().frames).push_back(std::move(out));
+      const bool to_this_step = !s.steps.empty() && (out.to == Destination::Vio || !datagram_left);
+      (to_this_step ? s.steps.back().frames : carried).push_back(std::move(out));
     });
     if (!parsed) ++unparsed;
   }

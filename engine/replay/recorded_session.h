@@ -28,7 +28,10 @@ struct OutgoingFrame {
 struct RecordedStep {
   uint64_t sensor_time_usec = 0;  ///< the HIL_SENSOR's time_usec: the session's simulated time
   uint64_t t_unix_us = 0;         ///< when the recording wrote it (wall clock): the replay's timing
-  std::vector<OutgoingFrame> frames;  ///< in recorded order, the HIL_SENSOR first
+  /// In recorded order: a client's frames forwarded at the step's start (recorded after the last
+  /// step's ODOMETRY), the HIL_SENSOR, what followed it to the board (HIL_GPS, the pilot's
+  /// commands, HEARTBEAT), and its VIO ODOMETRY.
+  std::vector<OutgoingFrame> frames;
 };
 
 /// One HIL_ACTUATOR_CONTROLS: its stamp, the step it arrived in (the last HIL_SENSOR sent before

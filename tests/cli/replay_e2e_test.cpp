@@ -146,6 +146,36 @@ TEST_F(ReplayE2E, CompareReportsTheDivergenceOfABoardWithAChangedParameter) {
   EXPECT_GT(largest, 1e-3);
 }
 
+TEST(ReplayFly, ASquareFlownByHitlFlyThroughTheClientPortReplaysExactly) {
+  // hitl fly's commands reach the board through the session's client port, forwarded at the start
+  // of the next step: the replay puts them in that step's datagram, before its HIL_SENSOR.
+  const auto dir = test::temp_dir();
+  const TargetPorts p;
+  const uint16_t clients = test::free_udp_port();
+  {
+    auto board = start_target(p);
+    test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(p.hil), "--local-port",
+                       std::to_string(test::free_udp_port()), "--vio-ip", "127.0.0.1", "--vio-port", std::to_string(p.vio),
+                       "--clients", std::to_string(clients), "--lockstep", "--speed", "5", "--record", dir + "/fly.tlog"});
+    ASSERT_TRUE(sim.wait_for_stderr("HIL_SENSOR/HIL_GPS to", 10s)) << sim.err();
+    const auto fly = test::run_hitl({"fly", "--connect", "udp:127.0.0.1:" + std::to_string(clients), "trajectory",
+                                     std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json"},
+                                    120s);
+    EXPECT_EQ(fly.exit_code, 0) << fly.out << fly.err;
+    sim.signal(SIGINT);
+    EXPECT_EQ(sim.wait(20s), 0) << sim.err();
+    board->signal(SIGINT);
+    board->wait(20s);
+  }
+  const TargetPorts q;
+  auto board = start_target(q);
+  const auto j = replay(q, dir + "/fly.tlog", 0);
+  board->signal(SIGINT);
+  board->wait(20s);
+  EXPECT_TRUE(j["compare"]["identical"].get<bool>()) << j.dump();
+  EXPECT_GT(j["compare"]["steps_compared"].get<uint64_t>(), 10000u);
+}
+
 TEST(ReplayBadInput, BadRecordingsExitTwoNamingTheProblem) {
   const auto dir = test::temp_dir();
   std::ofstream(dir + "/notes.tlog") << "not a telemetry log at all\n";

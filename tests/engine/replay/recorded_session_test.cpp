@@ -41,7 +41,7 @@ TEST(RecordedSession, StepsHoldWhatWentToTheBoardAndAnswersTheirStep) {
   {
     Writer w(path);
     mavlink::FrameEncoder sim(kSimulatorSystemId, kSimulatorComponentId), vio(kSimulatorSystemId, kVioComponentId),
-        board(1, 1), gcs(mavlink::kGcsSystemId, 190);
+        board(1, 1), gcs(mavlink::kGcsSystemId, 190), client(mavlink::kGcsSystemId, 191);
     msg::Heartbeat hb;
     w.write(board, hb);  // the board's telemetry: left out
     for (uint64_t k = 1; k <= 3; ++k) {
@@ -60,6 +60,10 @@ TEST(RecordedSession, StepsHoldWhatWentToTheBoardAndAnswersTheirStep) {
       w.write(sim, truth);
       msg::NamedValueFloat status;  // the session's status to clients: left out
       w.write(sim, status);
+      if (k == 1) {  // a client's sticks, forwarded at the next step's start: in its datagram, first
+        msg::ManualControl m;
+        w.write(client, m);
+      }
       msg::HilActuatorControls a;
       a.time_usec = k * 4000;
       a.controls[2] = 0.5f * static_cast<float>(k);
@@ -72,11 +76,14 @@ TEST(RecordedSession, StepsHoldWhatWentToTheBoardAndAnswersTheirStep) {
   ASSERT_EQ(s->steps.size(), 3u);
   EXPECT_EQ(s->simulator_sysid, kSimulatorSystemId);
   EXPECT_EQ(s->steps[1].sensor_time_usec, 8000u);
-  ASSERT_EQ(s->steps[1].frames.size(), 4u);  // HIL_SENSOR, HIL_GPS, COMMAND_LONG, ODOMETRY
-  EXPECT_EQ(s->steps[1].frames[0].to, Destination::Hil);
-  EXPECT_EQ(s->steps[1].frames[3].to, Destination::Vio);
+  ASSERT_EQ(s->steps[0].frames.size(), 4u);  // HIL_SENSOR, HIL_GPS, COMMAND_LONG, ODOMETRY
+  EXPECT_EQ(s->steps[0].frames[0].to, Destination::Hil);
+  EXPECT_EQ(s->steps[0].frames[3].to, Destination::Vio);
+  ASSERT_EQ(s->steps[1].frames.size(), 5u);  // MANUAL_CONTROL, HIL_SENSOR, HIL_GPS, COMMAND_LONG, ODOMETRY
+  EXPECT_EQ(s->steps[1].frames[0].bytes[7], 69);  // MANUAL_CONTROL's id
+  EXPECT_EQ(s->steps[1].frames[1].bytes[7], 107);  // HIL_SENSOR's id
   EXPECT_EQ(s->vio_frames, 3u);
-  EXPECT_EQ(s->other_frames, 6u);
+  EXPECT_EQ(s->other_frames, 7u);
   ASSERT_EQ(s->actuators.size(), 3u);
   EXPECT_EQ(s->actuators[2].step, 2);
   EXPECT_EQ(s->actuators[2].time_usec, 12000u);
