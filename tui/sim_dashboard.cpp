@@ -114,6 +114,21 @@ LinkField loop_latency_field(const char* label, const hil::LoopLatencySummary& l
   return {label, format("%.2f ms", value_us / 1000.0), late ? Health::Degraded : Health::Good};
 }
 
+LatencyPanel latency_panel(const hil::LoopLatencySummary& l) {
+  LatencyPanel p;
+  p.matched = l.lockstep ? "by echo" : "next message";
+  p.count = l.latency.count;
+  p.p50_us = l.latency.p50_us;
+  p.p95_us = l.latency.p95_us;
+  p.p99_us = l.latency.p99_us;
+  p.max_us = l.latency.max_us;
+  p.limit_us = l.lockstep ? kStepPeriod_s * 1e6 : 0;
+  auto edge = [](uint64_t us) { return us >= 1000 ? format("%llu ms", static_cast<unsigned long long>(us / 1000)) : format("%llu us", static_cast<unsigned long long>(us)); };
+  for (const auto& b : l.latency.bins)
+    p.bins.push_back({b.hi_us == 0 ? ">=" + edge(b.lo_us) : "<" + edge(b.hi_us), b.count});
+  return p;
+}
+
 }  // namespace
 
 DashboardModel SimDashboard::collect() {
@@ -152,6 +167,8 @@ DashboardModel SimDashboard::collect() {
   m.vehicle->rotor_speed_rad_s = s.rotor_speed_rad_s;
   for (const auto& r : config_.vehicle.rotors) m.vehicle->rotor_max_rad_s = std::max(m.vehicle->rotor_max_rad_s, r.max_rot_velocity_rad_s);
   if (s.steps > 0) m.vehicle->truth_altitude_m = s.altitude_m;  // above home at rest, as the estimate
+
+  m.latency = latency_panel(s.loop_latency);
 
   m.trajectory_running = trajectory_.running();
   if (m.trajectory_running) m.busy = "flying " + dashboard_.trajectory_file;
