@@ -146,6 +146,23 @@ TEST_F(ReplayE2E, CompareReportsTheDivergenceOfABoardWithAChangedParameter) {
   EXPECT_GT(largest, 1e-3);
 }
 
+TEST_F(ReplayE2E, APortInUseIsTwoAndABoardThatCannotBeReachedIsOne) {
+  const uint16_t busy = test::free_udp_port();
+  test::Process holder({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(busy), "--gcs-port", "0",
+                        "--vio-port", "0"});
+  ASSERT_TRUE(holder.wait_for_stderr("EMULATED", 10s)) << holder.err();
+  const auto in_use = test::run_hitl({"replay", *dir_ + "/a.tlog", "--bind", "127.0.0.1", "--local-port", std::to_string(busy)});
+  EXPECT_EQ(in_use.exit_code, 2) << in_use.err;
+  EXPECT_NE(in_use.err.find("in use"), std::string::npos) << in_use.err;
+  holder.signal(SIGINT);
+  holder.wait(20s);
+  // 255.255.255.255: the kernel refuses the send at once.
+  const auto refused = test::run_hitl({"replay", *dir_ + "/a.tlog", "-i", "255.255.255.255", "--local-port",
+                                       std::to_string(test::free_udp_port())});
+  EXPECT_EQ(refused.exit_code, 1) << refused.err;
+  EXPECT_NE(refused.err.find("sending to the board"), std::string::npos) << refused.err;
+}
+
 TEST(ReplayFly, ASquareFlownByHitlFlyThroughTheClientPortReplaysExactly) {
   // hitl fly's commands reach the board through the session's client port, forwarded at the start
   // of the next step: the replay puts them in that step's datagram, before its HIL_SENSOR.
