@@ -26,5 +26,6 @@ void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_completion_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_reference_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state);
+void add_replay_command(CLI::App& app, GlobalOptions& options, RunState& state);
 
 }  // namespace hitl::cli

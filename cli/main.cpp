@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   add_inspect_command(app, options, state);
   add_sim_command(app, options, state);
   add_target_command(app, options, state);
+  add_replay_command(app, options, state);
   add_params_command(app, options, state);
   add_arm_commands(app, options, state);
   add_shell_command(app, options, state);

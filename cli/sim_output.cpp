@@ -6,6 +6,8 @@
 #include <iostream>
 #include <map>
 
+#include "engine/telemetry/latency_json.h"
+
 namespace hitl::cli {
 
 namespace {
@@ -14,6 +16,14 @@ nlohmann::json streams_json(const std::map<std::string, hil::StreamCount>& strea
   nlohmann::json j = nlohmann::json::object();
   for (const auto& [name, c] : streams)
     j[name] = {{"count", c.count}, {"rate_hz", wall_s > 0 ? static_cast<double>(c.count) / wall_s : 0.0}};
+  return j;
+}
+
+nlohmann::json loop_latency_json(const hil::LoopLatencySummary& l, bool with_histogram) {
+  auto j = telemetry::to_json(l.latency, with_histogram);
+  j["matched"] = l.lockstep ? "echo" : "next";
+  j["sensors"] = l.sensors;
+  j["unanswered"] = l.unanswered;
   return j;
 }
 
@@ -88,6 +98,7 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
                        {"max_m", s.trajectory_max_m}};
   j["active_faults"] = s.active_faults;
   j["hil_link_faults"] = {{"dropped_datagrams", s.hil_dropped_datagrams}, {"delayed_datagrams", s.hil_delayed_datagrams}};
+  j["loop_latency"] = loop_latency_json(s.loop_latency, final_summary);
   if (final_summary) {
     j["faults"] = fault_records_json(s.faults);
     j["sent"] = streams_json(s.sent, s.wall_time_s);
@@ -163,6 +174,11 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
   if (s.hil_dropped_datagrams + s.hil_delayed_datagrams > 0)
     std::printf("HIL link faults: %llu datagrams dropped, %llu delayed\n", static_cast<unsigned long long>(s.hil_dropped_datagrams),
                 static_cast<unsigned long long>(s.hil_delayed_datagrams));
+  if (const auto& l = s.loop_latency.latency; l.count > 0)
+    std::printf("loop latency (HIL_SENSOR -> %s HIL_ACTUATOR_CONTROLS, %llu answered): p50 %.2f ms  p95 %.2f ms  p99 %.2f ms"
+                "  max %.2f ms\n",
+                s.loop_latency.lockstep ? "its" : "the next", static_cast<unsigned long long>(l.count), l.p50_us / 1000,
+                l.p95_us / 1000, l.p99_us / 1000, l.max_us / 1000);
   if (!s.trajectory_state.empty())
     std::printf("trajectory: %s%s, tracking error against truth RMS %.2f m, max %.2f m (%llu samples)\n",
                 s.trajectory_state.c_str(), s.trajectory_failure.empty() ? "" : (": " + s.trajectory_failure).c_str(),

@@ -9,9 +9,10 @@ _hitl_messages='ACTUATOR_OUTPUT_STATUS ATTITUDE ATTITUDE_QUATERNION ATTITUDE_TAR
 # _hitl_commands PATH: the subcommands of a command path ('' is hitl, 'params' is hitl params).
 _hitl_commands() {
     case "$1" in
-        '') echo 'inspect sim target params arm disarm shell fly doctor bridge demo completion' ;;
+        '') echo 'inspect sim target replay params arm disarm shell fly doctor board bridge demo report completion' ;;
         'params') echo 'show get set diff check export load reset' ;;
         'fly') echo 'takeoff land hold trajectory' ;;
+        'board') echo 'install start stop status restore' ;;
     esac
 }
 
@@ -20,8 +21,9 @@ _hitl_options() {
     case "$1" in
         '') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
         'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --report --version --json -v --verbose -q --quiet --dialect --config' ;;
         'target') echo '-h --help --bind --hil-port --gcs-port --vio-port --lockstep --duration --fault --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'replay') echo '-h --help -i --target-ip --hil-port --vio-port --local-port --bind --lockstep --lockstep-timeout --record --compare --tolerance --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params show') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params get') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -38,10 +40,17 @@ _hitl_options() {
         'fly takeoff') echo '-h --help --alt --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly land') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly hold') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'fly trajectory') echo '-h --help --rate --mode --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'fly trajectory') echo '-h --help --rate --mode --record --report --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board install') echo '-h --help --adb --adb-serial --packages --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board start') echo '-h --help --adb --adb-serial --reset-params --wait --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board stop') echo '-h --help --adb --adb-serial --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board status') echo '-h --help --adb --adb-serial --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'report') echo '-h --help -o --output --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
 }
@@ -50,8 +59,8 @@ _hitl_options() {
 # file [PATTERN], dir, messages, message-rates; "optional KIND" when the value may be left out.
 _hitl_value() {
     case "$1|$2" in
-        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'bridge|--dialect'|'demo|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
-        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'bridge|--config'|'demo|--config'|'completion|--config') echo 'file *.toml' ;;
+        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
+        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
         'inspect|--bind') echo 'text' ;;
         'inspect|--local-port') echo 'text' ;;
         'inspect|--record') echo 'file *.tlog' ;;
@@ -96,12 +105,21 @@ _hitl_value() {
         'sim|--gcs') echo 'text' ;;
         'sim|--truth-rate') echo 'text' ;;
         'sim|--record') echo 'file *.tlog' ;;
+        'sim|--report') echo 'file *.html' ;;
         'target|--bind') echo 'text' ;;
         'target|--hil-port') echo 'text' ;;
         'target|--gcs-port') echo 'text' ;;
         'target|--vio-port') echo 'text' ;;
         'target|--duration') echo 'text' ;;
         'target|--fault') echo 'text' ;;
+        'replay|-i'|'replay|--target-ip') echo 'text' ;;
+        'replay|--hil-port') echo 'text' ;;
+        'replay|--vio-port') echo 'text' ;;
+        'replay|--local-port') echo 'text' ;;
+        'replay|--bind') echo 'text' ;;
+        'replay|--lockstep-timeout') echo 'text' ;;
+        'replay|--record') echo 'file *.tlog' ;;
+        'replay|--tolerance') echo 'text' ;;
         'params|--connect'|'params show|--connect'|'params get|--connect'|'params set|--connect'|'params diff|--connect'|'params check|--connect'|'params export|--connect'|'params load|--connect'|'params reset|--connect') echo 'text' ;;
         'params|-i'|'params|--target-ip'|'params show|-i'|'params show|--target-ip'|'params get|-i'|'params get|--target-ip'|'params set|-i'|'params set|--target-ip'|'params diff|-i'|'params diff|--target-ip'|'params check|-i'|'params check|--target-ip'|'params export|-i'|'params export|--target-ip'|'params load|-i'|'params load|--target-ip'|'params reset|-i'|'params reset|--target-ip') echo 'text' ;;
         'params|--port'|'params show|--port'|'params get|--port'|'params set|--port'|'params diff|--port'|'params check|--port'|'params export|--port'|'params load|--port'|'params reset|--port') echo 'text' ;;
@@ -145,6 +163,8 @@ _hitl_value() {
         'fly takeoff|--alt') echo 'text' ;;
         'fly trajectory|--rate') echo 'text' ;;
         'fly trajectory|--mode') echo 'choice attitude velocity' ;;
+        'fly trajectory|--record') echo 'file *.tlog' ;;
+        'fly trajectory|--report') echo 'file *.html' ;;
         'doctor|--connect') echo 'text' ;;
         'doctor|-i'|'doctor|--target-ip') echo 'text' ;;
         'doctor|--port') echo 'text' ;;
@@ -156,6 +176,31 @@ _hitl_value() {
         'doctor|--vio-port') echo 'text' ;;
         'doctor|--adb-serial') echo 'text' ;;
         'doctor|--listen') echo 'text' ;;
+        'board install|--adb-serial') echo 'text' ;;
+        'board install|--packages') echo 'text' ;;
+        'board install|-i'|'board install|--target-ip') echo 'text' ;;
+        'board start|--adb-serial') echo 'text' ;;
+        'board start|--wait') echo 'text' ;;
+        'board start|--connect') echo 'text' ;;
+        'board start|-i'|'board start|--target-ip') echo 'text' ;;
+        'board start|--port') echo 'text' ;;
+        'board start|--local-port') echo 'text' ;;
+        'board start|--session-port') echo 'text' ;;
+        'board start|--sysid') echo 'text' ;;
+        'board start|--timeout') echo 'text' ;;
+        'board stop|--adb-serial') echo 'text' ;;
+        'board stop|-i'|'board stop|--target-ip') echo 'text' ;;
+        'board status|--adb-serial') echo 'text' ;;
+        'board status|--connect') echo 'text' ;;
+        'board status|-i'|'board status|--target-ip') echo 'text' ;;
+        'board status|--port') echo 'text' ;;
+        'board status|--local-port') echo 'text' ;;
+        'board status|--session-port') echo 'text' ;;
+        'board status|--sysid') echo 'text' ;;
+        'board status|--timeout') echo 'text' ;;
+        'board restore|--adb-serial') echo 'text' ;;
+        'board restore|--params') echo 'choice keep remove' ;;
+        'board restore|-i'|'board restore|--target-ip') echo 'text' ;;
         'bridge|-i'|'bridge|--target-ip') echo 'text' ;;
         'bridge|--port') echo 'text' ;;
         'bridge|--local-port') echo 'text' ;;
@@ -168,15 +213,20 @@ _hitl_value() {
         'demo|-t'|'demo|--trajectory') echo 'file *.json' ;;
         'demo|--speed') echo 'text' ;;
         'demo|--trajectory-mode') echo 'choice attitude velocity' ;;
+        'demo|--record') echo 'file *.tlog' ;;
+        'demo|--report') echo 'file *.html' ;;
+        'report|-o'|'report|--output') echo 'file *.html' ;;
     esac
 }
 
 # _hitl_positional PATH INDEX: how the INDEX-th positional argument (from 0) completes.
 _hitl_positional() {
     case "$1|$2" in
+        'replay|'0) echo 'file *.tlog' ;;
         'params export|'0) echo 'file' ;;
         'params load|'0) echo 'file' ;;
         'fly trajectory|'0) echo 'file' ;;
+        'report|'0) echo 'file *.tlog' ;;
         'completion|'0) echo 'choice bash zsh fish' ;;
     esac
 }

@@ -4,6 +4,7 @@
 // (board_impl.h lists them).
 #include "emulator/board.h"
 
+#include <utility>
 #include <poll.h>
 
 #include <algorithm>
@@ -240,6 +241,7 @@ Expected<Board::EndReason> Board::run(const std::atomic<bool>& stop, Observer& o
     if (!s.config.lockstep) s.process_board(s.now_us);
     for (auto* inst : s.instances())
       for (uint32_t id : inst->due_streams(static_cast<int64_t>(s.now_us))) s.send_stream(*inst, id);
+    s.send_owed_answers();  // lockstep: last, after everything the same input caused (board_impl.h)
     if (s.now_us >= next_status_us) {
       next_status_us += 1000000;
       s.publish();

@@ -9,12 +9,30 @@ namespace hitl::target {
 
 void Board::Impl::on_hil_sensor(const mavlink::msg::HilSensor& m) {
   ++hil_sensor_received;
-  if (config.lockstep) now_us = lockstep_clock.on_hil_sensor(m.time_usec, now_us);
+  if (config.lockstep) {
+    auto sessions = [&] { return lockstep_clock.restarts() + (lockstep_clock.started() ? 1 : 0); };
+    const uint64_t before = sessions();
+    now_us = lockstep_clock.on_hil_sensor(m.time_usec, now_us);
+    // A new simulator session: the streams start with it, so their phase against its steps is the
+    // same each run (deterministic replay, docs/replay.md), whenever the board was started.
+    if (sessions() != before)
+      for (auto* inst : instances()) inst->restart_streams();
+  }
   split.on_hil_sensor(hil_sensor_input(m), now_us);
   if (config.lockstep) {
     process_board(now_us);
-    send_actuators(*hil);  // one answer per HIL_SENSOR, as PX4 SITL's lockstep does
+    // One answer per HIL_SENSOR, as PX4 SITL's lockstep does: sent last in the loop's pass (board.cpp).
+    if (answers_owed.size() >= kMaxAnswersOwed) send_owed_answers();  // a burst of HIL_SENSORs (a free run): bounded
+    if (!config.faults.no_actuators) answers_owed.push_back(actuator_message());
   }
+}
+
+void Board::Impl::send_owed_answers() {
+  for (const auto& answer : answers_owed) {
+    hil->send(answer);
+    ++actuators_sent;
+  }
+  answers_owed.clear();
 }
 
 void Board::Impl::on_hil_gps(const mavlink::msg::HilGps& m) {

@@ -45,6 +45,12 @@ struct Board::Impl {
   std::optional<Shell> shell;
   LockstepClock lockstep_clock;
   net::AdaptiveBusyPoll busy_poll;  ///< lockstep: a moment's polling for the next HIL_SENSOR before sleeping
+  /// Lockstep: a HIL_SENSOR was taken and its HIL_ACTUATOR_CONTROLS is owed. It is sent last in the
+  /// loop's pass, after everything the same input caused (command acks, the streams due at the new
+  /// time), so the simulator, which steps on at the answer, has read all of it by then: the same
+  /// input gives the same answers in the same steps (docs/replay.md "Deterministic").
+  std::vector<mavlink::msg::HilActuatorControls> answers_owed;  ///< at most kMaxAnswersOwed
+  static constexpr std::size_t kMaxAnswersOwed = 64;
 
   uint64_t start_us = 0;
   uint64_t now_us = 0;  ///< board time since start
@@ -84,6 +90,10 @@ struct Board::Impl {
   void statustext(const std::string& text, mavlink::MavSeverity severity);
   void send_stream(MavlinkInstance& inst, uint32_t id);
   void send_actuators(MavlinkInstance& inst);
+  /// The HIL_ACTUATOR_CONTROLS the board would send now (stamped, flagged, armed or not).
+  mavlink::msg::HilActuatorControls actuator_message() const;
+  /// Lockstep: sends the answers owed, in order.
+  void send_owed_answers();
   /// The start script's stream configuration (spec step 9) and PX4's defaults for the rest.
   void default_streams(MavlinkInstance& inst, bool is_hil);
 

@@ -49,6 +49,11 @@ void Board::Impl::send_stream(MavlinkInstance& inst, uint32_t id) {
 
 void Board::Impl::send_actuators(MavlinkInstance& inst) {
   if (config.faults.no_actuators) return;  // --fault no-actuators
+  inst.send(actuator_message());
+  ++actuators_sent;
+}
+
+msg::HilActuatorControls Board::Impl::actuator_message() const {
   const auto s = flight->state();
   msg::HilActuatorControls m;
   // Lockstep: stamped with the HIL_SENSOR it answers, as PX4 SITL stamps it with its lockstep
@@ -57,8 +62,7 @@ void Board::Impl::send_actuators(MavlinkInstance& inst) {
   for (std::size_t i = 0; i < 4; ++i) m.controls[i] = s.armed ? static_cast<float>(motors[i]) : 0.0f;
   m.mode = base_mode_with_hil(s);
   m.flags = config.faults.wrong_flags ? kWrongActuatorFlags : kVoxl2ActuatorFlags;
-  inst.send(m);
-  ++actuators_sent;
+  return m;
 }
 
 void Board::Impl::default_streams(MavlinkInstance& inst, bool is_hil) {

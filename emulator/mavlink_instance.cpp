@@ -51,6 +51,10 @@ std::optional<int64_t> MavlinkInstance::interval_us(uint32_t msgid) const {
   return it->second.interval_us;
 }
 
+void MavlinkInstance::restart_streams() {
+  for (auto& [id, s] : streams_) s.next_us = 0;
+}
+
 std::vector<uint32_t> MavlinkInstance::due_streams(int64_t now_us) {
   std::vector<uint32_t> due;
   for (auto& [id, s] : streams_) {

@@ -50,6 +50,9 @@ class MavlinkInstance {
   std::optional<int64_t> interval_us(uint32_t msgid) const;
   /// The ids whose stream is due at `now_us` (each becomes due again one interval later).
   std::vector<uint32_t> due_streams(int64_t now_us);
+  /// Every stream due at the next due_streams() and one interval after it from then on: their phase
+  /// set by that moment (lockstep: the first HIL_SENSOR), not by when the board started.
+  void restart_streams();
 
   const std::string& name() const { return name_; }
   uint16_t port() const { return endpoint_.local_address().port(); }

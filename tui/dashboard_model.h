@@ -99,6 +99,19 @@ struct LogLine {
   int repeats = 1;                 ///< a STATUSTEXT said this many times within a short window: "(xN)"
 };
 
+/// Loop latency at the board (engine/hil/loop_latency.h): the sim dashboard's, on tall terminals.
+struct LatencyPanel {
+  std::string matched;  ///< "by echo" (lockstep) or "next message"
+  uint64_t count = 0;
+  double p50_us = 0, p95_us = 0, p99_us = 0, max_us = 0;
+  double limit_us = 0;  ///< above this the figure is yellow (lockstep: one step); 0: none
+  struct Bin {
+    std::string label;  ///< "<250 us", "1-2 ms", ">=256 ms"
+    uint64_t count = 0;
+  };
+  std::vector<Bin> bins;  ///< the histogram's fixed bins
+};
+
 struct LinkField {
   std::string label;
   std::string value;
@@ -114,6 +127,7 @@ struct DashboardModel {
   std::optional<DspHitlPanel> dsp_hitl;
   std::optional<EkfPanel> ekf;
   std::optional<VehiclePanel> vehicle;
+  std::optional<LatencyPanel> latency;
   std::vector<LogLine> messages;   ///< oldest first
   std::string link_partner;        ///< the Link panel's title: who is on the other end
   Health link_health = Health::Good;

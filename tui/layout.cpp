@@ -66,9 +66,15 @@ Layout layout_for(int width, int height, const DashboardModel& m) {
     if (bottom - ry > bottom - messages_y) {  // the right column is shorter: messages fill it
       l.link = {0, left_used, left_w, std::max(0, bottom - left_used)};
       l.messages = {left_w, ry, right_w, std::max(0, bottom - ry)};
+      if (m.latency && l.link.h >= link_h + kLatencyHeight) {  // the link's spare rows
+        l.link.h = link_h;
+        l.latency = {0, left_used + link_h, left_w, bottom - left_used - link_h};
+      }
     } else {  // across the bottom
       l.link = {0, left_used, left_w, link_h};
       l.messages = {0, messages_y, width, std::max(0, bottom - messages_y)};
+      if (m.latency && messages_y - (left_used + link_h) >= kLatencyHeight)  // rows the left column has spare
+        l.latency = {0, left_used + link_h, left_w, messages_y - left_used - link_h};
       if (ry < messages_y && m.ekf) l.ekf.h += messages_y - ry;  // no gap on the right
     }
   } else {

@@ -22,6 +22,7 @@ struct Layout {
   bool too_small = false;
   Rect header, footer;
   Rect paths, dsp_hitl, link, vehicle, ekf, messages;  ///< empty when the panel is not shown
+  Rect latency;  ///< loop latency: tall terminals only, in rows the left column has spare below the link
 };
 
 /// Rows each panel needs for its content (borders included), given the model.
@@ -30,6 +31,8 @@ int dsp_hitl_height(bool wide);
 int link_height(const DashboardModel& model, int width);
 inline constexpr int kVehicleHeight = 9;
 int ekf_height(bool wide);
+/// The loop latency panel: a summary line and the histogram's rows that hold samples.
+inline constexpr int kLatencyHeight = 2 + 1 + 7;
 
 Layout layout_for(int width, int height, const DashboardModel& model);
 

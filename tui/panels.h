@@ -20,6 +20,7 @@ void draw_messages(Screen& screen, const Rect& r, const std::vector<LogLine>& li
 int message_row_count(const std::vector<LogLine>& lines, int width);
 void draw_link(Screen& screen, const Rect& r, const std::string& partner, Health health, const std::vector<LinkField>& fields);
 
+void draw_latency(Screen& screen, const Rect& r, const LatencyPanel& panel);
 /// "n/a: <reason>", wrapped inside a panel's box (for any panel a source cannot fill).
 void draw_unavailable(Screen& screen, const Rect& inner, const std::string& reason);
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "base/contract/data_rates.h"
 #include "engine/vehicle/patient_link.h"
 #include "tui/collect.h"
 #include "tui/draw.h"
@@ -103,6 +104,33 @@ void SimDashboard::perform(Action action, const std::string& argument) {
   }
 }
 
+namespace {
+
+/// A loop latency figure (engine/hil/loop_latency.h) in ms; degraded above one step in lockstep,
+/// where the board answers each step (outside it the board's own stream sets the pace).
+LinkField loop_latency_field(const char* label, const hil::LoopLatencySummary& l, double value_us) {
+  if (l.latency.count == 0) return {label, "-"};
+  const bool late = l.lockstep && value_us > kStepPeriod_s * 1e6;
+  return {label, format("%.2f ms", value_us / 1000.0), late ? Health::Degraded : Health::Good};
+}
+
+LatencyPanel latency_panel(const hil::LoopLatencySummary& l) {
+  LatencyPanel p;
+  p.matched = l.lockstep ? "by echo" : "next message";
+  p.count = l.latency.count;
+  p.p50_us = l.latency.p50_us;
+  p.p95_us = l.latency.p95_us;
+  p.p99_us = l.latency.p99_us;
+  p.max_us = l.latency.max_us;
+  p.limit_us = l.lockstep ? kStepPeriod_s * 1e6 : 0;
+  auto edge = [](uint64_t us) { return us >= 1000 ? format("%llu ms", static_cast<unsigned long long>(us / 1000)) : format("%llu us", static_cast<unsigned long long>(us)); };
+  for (const auto& b : l.latency.bins)
+    p.bins.push_back({b.hi_us == 0 ? ">=" + edge(b.lo_us) : "<" + edge(b.hi_us), b.count});
+  return p;
+}
+
+}  // namespace
+
 DashboardModel SimDashboard::collect() {
   const hil::SessionSnapshot s = session_.snapshot();
   DashboardModel m;
@@ -140,6 +168,8 @@ DashboardModel SimDashboard::collect() {
   for (const auto& r : config_.vehicle.rotors) m.vehicle->rotor_max_rad_s = std::max(m.vehicle->rotor_max_rad_s, r.max_rot_velocity_rad_s);
   if (s.steps > 0) m.vehicle->truth_altitude_m = s.altitude_m;  // above home at rest, as the estimate
 
+  m.latency = latency_panel(s.loop_latency);
+
   m.trajectory_running = trajectory_.running();
   if (m.trajectory_running) m.busy = "flying " + dashboard_.trajectory_file;
   m.messages = log_.lines();
@@ -159,6 +189,7 @@ DashboardModel SimDashboard::collect() {
   m.link = {
       {"rtf", format("%.2f", s.recent_real_time_factor)},
       {"late", count(s.late_ticks), flag(s.late_ticks)},
+      loop_latency_field("loop p99", s.loop_latency, s.loop_latency.latency.p99_us),
       {"out", count(sum(s.sent))},
       {"in", count(sum(s.received))},
       {"ignored", count(ignored), flag(ignored)},
@@ -174,6 +205,8 @@ DashboardModel SimDashboard::collect() {
       {"resets", count(s.resets)},
       {"imu sat", count(s.imu_accel_saturated + s.imu_gyro_saturated), flag(s.imu_accel_saturated + s.imu_gyro_saturated)},
       {"touchdowns", count(s.touchdowns)},
+      loop_latency_field("loop p50", s.loop_latency, s.loop_latency.latency.p50_us),
+      loop_latency_field("loop max", s.loop_latency, s.loop_latency.latency.max_us),
   };
   return m;
 }

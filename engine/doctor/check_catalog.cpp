@@ -31,6 +31,7 @@ const std::vector<CheckInfo>& doctor_checks() {
       {check::kPaused, group::kSimulator, "not paused"},
       {check::kRealTime, group::kSimulator, "real-time factor"},
       {check::kLateTicks, group::kSimulator, "late ticks"},
+      {check::kLoopLatency, group::kSimulator, "loop latency at the board"},
   };
   return checks;
 }

@@ -54,6 +54,7 @@ inline constexpr const char* kSession = "session";
 inline constexpr const char* kPaused = "paused";
 inline constexpr const char* kRealTime = "real-time";
 inline constexpr const char* kLateTicks = "late-ticks";
+inline constexpr const char* kLoopLatency = "loop-latency";
 }  // namespace check
 
 struct CheckInfo {

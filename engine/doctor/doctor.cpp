@@ -217,6 +217,7 @@ std::vector<CheckResult> run_doctor(const DoctorOptions& o, const ResultSink& on
   emit(paused_check(session));
   emit(real_time_check(session));
   emit(late_ticks_check(session));
+  emit(loop_latency_check(session));
   return results;
 }
 

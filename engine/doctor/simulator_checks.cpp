@@ -72,4 +72,23 @@ CheckResult late_ticks_check(const SessionStatus& s) {
   return make_result(check::kLateTicks, Verdict::Warn, saw, fix);
 }
 
+CheckResult loop_latency_check(const SessionStatus& s) {
+  if (!s.heard()) return make_result(check::kLoopLatency, Verdict::Skip, kNoSession);
+  if (!s.loop_latency_p99_us || *s.loop_latency_p99_us < 0)
+    return make_result(check::kLoopLatency, Verdict::Skip, "no HIL_ACTUATOR_CONTROLS has answered a HIL_SENSOR yet");
+  const double p99_ms = *s.loop_latency_p99_us / 1000.0;
+  const bool lockstep = s.lockstep.value_or(false);
+  const double step_ms = hitl::kStepPeriod_s * 1000.0;
+  const double floor_ms = lockstep ? 0.0 : static_cast<double>(hitl::kActuatorStreamPeriod_us) / 1000.0 + step_ms;
+  const double limit_ms = floor_ms + step_ms;
+  const std::string saw = "p99 " + fixed(p99_ms, 2) + " ms from a HIL_SENSOR to " +
+                          (lockstep ? "its answer (lockstep, one step " + fixed(step_ms, 0) + " ms)"
+                                    : "the next HIL_ACTUATOR_CONTROLS (limit " + fixed(limit_ms, 0) +
+                                          " ms: the board's stream period and the session's tick, plus one step)");
+  if (p99_ms <= limit_ms) return make_result(check::kLoopLatency, Verdict::Pass, saw);
+  return make_result(check::kLoopLatency, Verdict::Warn, saw + ": the board answers later than a step, so it flies on old sensors",
+                     "a slow link (USB: hitl doctor's link checks, try another port or cable) or a busy board; "
+                     "hitl sim --json's loop_latency has the histogram");
+}
+
 }  // namespace hitl::doctor

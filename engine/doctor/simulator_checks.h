@@ -21,5 +21,10 @@ CheckResult real_time_check(const SessionStatus& s);
 /// late-ticks: ticks that began over a period late between the first and last report, against the
 /// ticks in that time (250 per simulated second).
 CheckResult late_ticks_check(const SessionStatus& s);
+/// loop-latency: the session's p99 from a HIL_SENSOR sent to the HIL_ACTUATOR_CONTROLS that
+/// answers it (engine/hil/loop_latency.h). Lockstep: warn above one step. Outside lockstep the
+/// answer is the next message of the board's own stream, taken at the session's next tick, so
+/// those two periods are the floor: warn above one step beyond them.
+CheckResult loop_latency_check(const SessionStatus& s);
 
 }  // namespace hitl::doctor

@@ -162,6 +162,8 @@ void ClientServices::send_doctor_status(uint32_t boot_ms, const SessionStatus& s
   named_float(kStatusActuatorRateName, status.actuator_rate_hz);
   named_int(kStatusActuatorFlagsName, heard ? actuators.last_flags() : -1);
   named_int(kStatusActuatorArmedName, heard ? (actuators.armed() ? 1 : 0) : -1);
+  named_int(kStatusLoopLatencyP99Name,
+            status.loop_latency_p99_us ? static_cast<int32_t>(std::min(*status.loop_latency_p99_us, 2e9)) : -1);
 }
 
 void ClientServices::send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s) {

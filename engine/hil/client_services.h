@@ -32,6 +32,7 @@ struct SessionStatus {
   double recent_real_time_factor = 0;
   uint64_t late_ticks = 0;
   double actuator_rate_hz = 0;  ///< HIL_ACTUATOR_CONTROLS over the last window (0 when stale)
+  std::optional<double> loop_latency_p99_us;  ///< loop_latency.h; none before the first answer
 };
 
 class ClientServices {

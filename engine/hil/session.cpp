@@ -62,6 +62,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   // One step of simulated time per tick.
   s.pacer.emplace(config.world.physics.step_s, config.speed, config.spin_us * 1e-6);
   s.paths.emplace(config);
+  s.loop_latency.emplace(s.stack->lockstep());
   s.fault_schedule = faults::FaultSchedule(config.faults);
   return std::unique_ptr<Session>(new Session(std::move(impl)));
 }

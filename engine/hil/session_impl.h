@@ -9,6 +9,7 @@
 
 #include "engine/hil/client_services.h"
 #include "engine/hil/data_paths.h"
+#include "engine/hil/loop_latency.h"
 #include "engine/hil/pacer.h"
 #include "engine/hil/pause_clock.h"
 #include "engine/hil/recording.h"
@@ -41,6 +42,7 @@ struct Session::Impl {
   std::unique_ptr<ClientServices> services;  ///< client port, status, truth, VIO
   std::optional<Pacer> pacer;
   std::optional<DataPaths> paths;
+  std::optional<LoopLatency> loop_latency;  ///< HIL_SENSOR -> its HIL_ACTUATOR_CONTROLS (loop_latency.h)
   std::optional<vehicle::TrajectoryFlight> pilot;
   faults::FaultSchedule fault_schedule;  ///< --fault, --scenario
   mavlink::FrameEncoder pilot_encoder{mavlink::kGcsSystemId, mavlink::kCompIdMissionPlanner};  ///< a GCS's identity

@@ -11,6 +11,7 @@
 
 #include "engine/faults/fault_schedule.h"
 #include "engine/hil/data_paths.h"
+#include "engine/hil/loop_latency.h"
 
 namespace hitl::hil {
 
@@ -85,6 +86,7 @@ struct SessionSnapshot {
   std::vector<faults::FaultRecord> faults; ///< every fault that started, with its start and end
   uint64_t hil_dropped_datagrams = 0;      ///< hil-drop
   uint64_t hil_delayed_datagrams = 0;      ///< hil-delay
+  LoopLatencySummary loop_latency;         ///< HIL_SENSOR -> its HIL_ACTUATOR_CONTROLS, wall time (loop_latency.h)
 };
 
 }  // namespace hitl::hil

@@ -78,6 +78,7 @@ void Session::Impl::wait_next_tick(const std::atomic<bool>& stop) {
 void Session::Impl::drain(double now_s) {
   stack->drain(now_s, [&](const mavlink::Frame& f, double t_s) {
     paths->on_stack_frame(f, t_s);
+    if (f.is<mavlink::msg::HilActuatorControls>()) loop_latency->on_actuator(f.as<mavlink::msg::HilActuatorControls>().time_usec, t_s);
     if (pilot) pilot->on_board_frame(f);
     services->route_from_stack(f, t_s);
   });
@@ -89,6 +90,7 @@ void Session::Impl::send_messages(const sensors::SensorFrame& frame, uint64_t t_
     stack->send(make_hil_sensor(frame, t_us));
     sensor_sent = true;
     if (stack->lockstep() && frame.imu) stack->actuators().expect_answer_to(t_us);
+    if (frame.imu) loop_latency->on_hil_sensor_sent(t_us, sent_s);
     paths->on_hil_sensor(frame.imu.has_value(), frame.mag.has_value(), frame.baro.has_value(), sent_s);
     stack->on_hil_sensor_sent(monotonic_s());
   }
@@ -173,6 +175,7 @@ SessionStatus Session::Impl::status(double now_s) const {
   s.paused = clock.paused();
   s.recent_real_time_factor = recent_rtf;
   s.late_ticks = pacer->stats().late;
+  s.loop_latency_p99_us = loop_latency->p99_us();
   for (const auto& p : paths->stats(now_s))
     if (!p.outgoing && p.stats.since_last_s >= 0 && p.stats.since_last_s < telemetry::kStaleAfter_s)
       s.actuator_rate_hz = p.stats.rate_hz;
@@ -188,6 +191,7 @@ void Session::Impl::publish() {
   s.faults = fault_schedule.records();
   s.hil_dropped_datagrams = stack->link_faults().dropped_datagrams();
   s.hil_delayed_datagrams = stack->link_faults().delayed_datagrams();
+  s.loop_latency = loop_latency->summary();
   std::lock_guard<std::mutex> lock(snapshot_mutex);
   published = std::move(s);
 }

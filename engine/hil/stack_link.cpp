@@ -167,7 +167,25 @@ std::string StackLink::describe() const {
 // --- lockstep --------------------------------------------------------------------------------
 
 void StackLink::lockstep_wait(EventSink& events, const std::function<void()>& drain_all) {
-  if (!lockstep() || !actuators_.ever_received()) return;  // PX4 sends nothing during its first ~1.1 s
+  if (!lockstep()) return;
+  if (!actuators_.ever_received()) {
+    // PX4 SITL sends nothing during its first ~1.1 s: step on until it answers. A board (hitl target
+    // --lockstep) answers from the first HIL_SENSOR: wait for that once, so that the steps never run
+    // ahead of it and the same input gives the same session (docs/replay.md "Deterministic
+    // sessions"); one that does not is not waited for again until heard (not a fallback).
+    if (sitl() || waited_first_) return;
+    waited_first_ = true;
+    const double deadline = monotonic_s() + config_.lockstep_timeout_s;
+    while (!actuators_.ever_received() && !gone()) {
+      release_delayed(monotonic_s());  // hil-delay: the HIL_SENSOR awaited may still be held
+      double wait_s = deadline - monotonic_s();
+      if (const auto due_s = next_delayed_s()) wait_s = std::min(wait_s, std::max(0.0, *due_s - monotonic_s()));
+      if (deadline - monotonic_s() <= 0) return;
+      if (link_->wait_readable(static_cast<int>(std::ceil(wait_s * 1000)))) drain_all();
+    }
+    actuators_.take_new();
+    return;
+  }
   if (stalled_) {
     // After a wait ran out, step on at the pace (bounded wall time) until the board is heard again.
     if (actuators_.take_heard() == 0) return;

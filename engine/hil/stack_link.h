@@ -121,6 +121,7 @@ class StackLink {
   uint64_t routed_to_board_ = 0;
   bool stalled_ = false;  ///< a wait ran out: step on without waiting until the stack is heard again
   bool warned_lockstep_ = false;
+  bool waited_first_ = false;  ///< lockstep with a board: the first HIL_SENSOR's answer was waited for
   bool warned_clock_ahead_ = false;
   bool warned_no_answer_ = false;
   double first_sensor_wall_s_ = -1;

@@ -118,9 +118,9 @@ TEST_P(DoctorFault, FailsExactlyTheChecksTheFaultImplies) {
       EXPECT_TRUE(j["fix"].is_string() && !j["fix"].get<std::string>().empty()) << j.dump();
     }
   }
-  EXPECT_EQ(order.size(), 25u) << r.out;
+  EXPECT_EQ(order.size(), 26u) << r.out;
   EXPECT_EQ(order.front(), "route");
-  EXPECT_EQ(order.back(), "late-ticks");
+  EXPECT_EQ(order.back(), "loop-latency");
   EXPECT_EQ(failed, implied_failures().at(fault)) << r.out << r.err;
   EXPECT_EQ(summary["failed"].get<std::size_t>(), failed.size());
   EXPECT_EQ(summary["ok"].get<bool>(), failed.empty());
@@ -165,7 +165,7 @@ TEST(DoctorE2E, NoBoardNoSessionHumanOutput) {
             std::string::npos) << r.out;
   EXPECT_NE(r.out.find("[skip] dsp_hitl counters and rates: no link to the board"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("[warn] HIL and VIO ports on this host"), std::string::npos) << r.out;  // nothing holds them
-  EXPECT_NE(r.out.find("25 checks: 0 passed, 1 warned, 2 failed, 22 skipped"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("26 checks: 0 passed, 1 warned, 2 failed, 23 skipped"), std::string::npos) << r.out;
 }
 
 TEST(DoctorE2E, BadOptionsAreUsageErrors) {

@@ -274,3 +274,48 @@ TEST(Render, InspectHasPathsLinkAndMessagesOnly) {
 
 }  // namespace
 }  // namespace hitl::tui
+
+namespace hitl::tui {
+namespace {
+
+LatencyPanel sample_latency() {
+  LatencyPanel p;
+  p.matched = "by echo";
+  p.count = 11501;
+  p.p50_us = 20;
+  p.p95_us = 50;
+  p.p99_us = 5000;  // above the 4 ms step: yellow
+  p.max_us = 10730;
+  p.limit_us = 4000;
+  for (const char* label : {"<250 us", "<500 us", "<1 ms", "<2 ms", "<4 ms", "<8 ms", "<16 ms", ">=16 ms"}) p.bins.push_back({label, 0});
+  p.bins[0].count = 11000;
+  p.bins[2].count = 400;
+  p.bins[5].count = 101;
+  return p;
+}
+
+TEST(RenderLatency, APanelOfItsOwnOnTallTerminalsOnlyInSpareRows) {
+  auto model = test::sample_model();
+  model.latency = sample_latency();
+  const auto tall = draw(200, 60, model);
+  SCOPED_TRACE(tall.dump());
+  const auto [x, y] = tall.find("Loop latency (by echo)");
+  ASSERT_GE(y, 1);
+  EXPECT_NE(tall.row(y + 1).find("p50 0.02  p95 0.05  p99 5.00  max 10.73 ms  n 11501"), std::string::npos);
+  EXPECT_EQ(style_of(tall, "p95 0.05", "p99 5.00").color, Color::Warning);
+  EXPECT_NE(tall.row(y + 2).find("<250 us"), std::string::npos);
+  EXPECT_NE(tall.row(y + 2).find("11000"), std::string::npos);
+  EXPECT_NE(tall.row(y + 4).find("<1 ms"), std::string::npos);  // empty bins between stay, as rows
+  EXPECT_NE(tall.row(y + 7).find("<8 ms"), std::string::npos);
+  EXPECT_EQ(tall.find(">=16 ms").second, -1);  // nothing after the last bin with samples
+  // The other panels where they were without it.
+  auto without = test::sample_model();
+  const auto before = draw(200, 60, without);
+  for (const char* title : {"Data paths", "Vehicle", "EKF", "Messages", "Link 127.0.0.1:14560"})
+    EXPECT_EQ(tall.find(title), before.find(title)) << title;
+  // 80x24 has no spare rows: the Link panel's fields say it.
+  EXPECT_EQ(draw(80, 24, model).find("Loop latency").second, -1);
+}
+
+}  // namespace
+}  // namespace hitl::tui

@@ -16,7 +16,7 @@ namespace {
 
 TEST(DoctorCatalog, ChecksAreUniqueGroupedAndInTheIssuesOrder) {
   const auto& checks = doctor_checks();
-  ASSERT_EQ(checks.size(), 25u);
+  ASSERT_EQ(checks.size(), 26u);
   std::set<std::string> ids;
   for (const auto& c : checks) EXPECT_TRUE(ids.insert(c.id).second) << c.id;
   const std::vector<std::string> groups = {group::kHost,     group::kLink,    group::kSensors, group::kParameters,

@@ -41,5 +41,29 @@ TEST(DoctorSimulator, SessionPausedPaceLateTicks) {
   EXPECT_EQ(late_ticks_check(s).result, Verdict::Warn);
 }
 
+TEST(DoctorSimulator, LoopLatencyWarnsWhenP99ExceedsOneStep) {
+  SessionStatus none;
+  EXPECT_EQ(loop_latency_check(none).result, Verdict::Skip);
+  auto s = session(true, 5, 1250, 15, 0);
+  s.lockstep = true;
+  EXPECT_EQ(loop_latency_check(s).result, Verdict::Skip);  // an older session: no "sim_lat99"
+  s.loop_latency_p99_us = -1;
+  EXPECT_EQ(loop_latency_check(s).result, Verdict::Skip);  // nothing answered yet
+  s.loop_latency_p99_us = 4000;                             // exactly one step
+  EXPECT_EQ(loop_latency_check(s).result, Verdict::Pass);
+  s.loop_latency_p99_us = 4001;
+  const auto late = loop_latency_check(s);
+  EXPECT_EQ(late.result, Verdict::Warn);
+  EXPECT_NE(late.saw.find("p99 4.00 ms"), std::string::npos) << late.saw;
+  EXPECT_FALSE(late.fix.empty());
+  // Outside lockstep the next message of the board's 200 Hz stream, taken at the next 4 ms tick,
+  // is the floor (9 ms): one step beyond it is the limit.
+  s.lockstep = false;
+  s.loop_latency_p99_us = 12000;
+  EXPECT_EQ(loop_latency_check(s).result, Verdict::Pass);
+  s.loop_latency_p99_us = 13500;
+  EXPECT_EQ(loop_latency_check(s).result, Verdict::Warn);
+}
+
 }  // namespace
 }  // namespace hitl::doctor
