@@ -1,0 +1,122 @@
+// The sensor and VIO faults as the flight stack sees them (docs/faults.md): what gyro-bias,
+// mag-offset, baro-drift and gps-degrade do to HIL_SENSOR and HIL_GPS at a stand-in board, and
+// vio-loss to ODOMETRY at a stand-in VIO server. Noise off, the vehicle at rest: a fault's effect is
+// the difference between its window and before it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "base/mavlink/enums.h"
+#include "tests/engine/hil/wire_board.h"
+
+namespace hitl::hil {
+namespace {
+
+using test_wire::Arrival;
+using test_wire::Board;
+using test_wire::Running;
+
+constexpr double kStart_s = 0.5;  ///< every fault here starts then
+constexpr double kEps_s = 1e-6;
+constexpr uint32_t kMagBits = 64 | 128 | 256;  // HIL_SENSOR_UPDATED_FLAGS XMAG|YMAG|ZMAG
+constexpr uint32_t kPressureBit = 512;         // ABS_PRESSURE
+
+/// The mean of `value` over the HIL_SENSORs with `bits` updated, in [from_s, to_s).
+template <typename F>
+Eigen::Vector3d mean_over(const std::vector<Arrival>& got, double from_s, double to_s, uint32_t bits, F value) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (const auto& a : got)
+    if (a.sensor && a.sim_s >= from_s - kEps_s && a.sim_s < to_s - kEps_s && (a.sensor->fields_updated & bits) == bits) {
+      sum += value(*a.sensor);
+      ++n;
+    }
+  EXPECT_GT(n, 10) << "HIL_SENSORs in " << from_s << ".." << to_s << " s";
+  return n ? Eigen::Vector3d(sum / n) : sum;
+}
+
+TEST(SensorFaultsOnTheWire, GyroBiasShiftsHilSensorGyroByTheBias) {
+  Board board;
+  Running run(board, {"gyro-bias:0.02,-0.01,0.05@0.5"}, /*noise=*/false);
+  const auto got = board.receive_until(1.0, 10);
+  auto gyro = [](const mavlink::msg::HilSensor& m) { return Eigen::Vector3d(m.xgyro, m.ygyro, m.zgyro); };
+  const Eigen::Vector3d shift = mean_over(got, kStart_s, 1.0, 8 | 16 | 32, gyro) - mean_over(got, 0.2, kStart_s, 8 | 16 | 32, gyro);
+  EXPECT_NEAR(shift.x(), 0.02, 1e-4);
+  EXPECT_NEAR(shift.y(), -0.01, 1e-4);
+  EXPECT_NEAR(shift.z(), 0.05, 1e-4);
+}
+
+TEST(SensorFaultsOnTheWire, MagOffsetShiftsHilSensorMagByTheOffset) {
+  Board board;
+  Running run(board, {"mag-offset:0.3,0,-0.1@0.5"}, /*noise=*/false);
+  const auto got = board.receive_until(1.0, 10);
+  auto mag = [](const mavlink::msg::HilSensor& m) { return Eigen::Vector3d(m.xmag, m.ymag, m.zmag); };
+  const Eigen::Vector3d shift = mean_over(got, kStart_s, 1.0, kMagBits, mag) - mean_over(got, 0.2, kStart_s, kMagBits, mag);
+  EXPECT_NEAR(shift.x(), 0.3, 1e-4);
+  EXPECT_NEAR(shift.y(), 0.0, 1e-4);
+  EXPECT_NEAR(shift.z(), -0.1, 1e-4);
+}
+
+TEST(SensorFaultsOnTheWire, BaroDriftMovesHilSensorPressureAtItsRate) {
+  Board board;
+  Running run(board, {"baro-drift:-100@0.5"}, /*noise=*/false);  // -100 Pa/s: as in a climb of about 8 m/s
+  const auto got = board.receive_until(1.5, 10);
+  double before_hPa = 0, before_alt_m = 0;
+  int checked = 0;
+  for (const auto& a : got) {
+    if (!a.sensor || !(a.sensor->fields_updated & kPressureBit)) continue;
+    if (a.sim_s > 0.3 && a.sim_s < kStart_s - kEps_s) before_hPa = a.sensor->abs_pressure, before_alt_m = a.sensor->pressure_alt;
+    if (a.sim_s < 0.8 || before_hPa == 0) continue;
+    const double offset_Pa = (a.sensor->abs_pressure - before_hPa) * 100.0;
+    EXPECT_NEAR(offset_Pa, -100.0 * (a.sim_s - kStart_s), 1.0) << "at " << a.sim_s << " s";
+    EXPECT_GT(a.sensor->pressure_alt, before_alt_m + 2.0);  // less pressure: higher
+    ++checked;
+  }
+  EXPECT_GE(checked, 5);  // the barometer samples at 10 Hz: 7 in 0.8..1.5 s
+}
+
+TEST(SensorFaultsOnTheWire, GpsDegradeReportsItsFixSatellitesAndAccuracyInHilGps) {
+  Board board;
+  Running run(board, {"gps-degrade:2,4,5,8@0.5+0.5"}, /*noise=*/false);
+  const auto got = board.receive_until(1.5, 10);
+  int before = 0, during = 0, after = 0;
+  for (const auto& a : got) {
+    if (!a.gps) continue;
+    const double t = a.gps_sim_s();
+    const auto& g = *a.gps;
+    if (t >= kStart_s - kEps_s && t < 1.0 - kEps_s) {
+      EXPECT_EQ(g.fix_type, 2);
+      EXPECT_EQ(g.satellites_visible, 4);
+      EXPECT_EQ(g.eph, 500);  // cm
+      EXPECT_EQ(g.epv, 800);
+      ++during;
+    } else {
+      EXPECT_EQ(g.fix_type, 3) << "at " << t << " s";
+      EXPECT_GT(g.satellites_visible, 4);
+      EXPECT_LT(g.eph, 500);
+      (t < kStart_s ? before : after) += 1;
+    }
+  }
+  EXPECT_GT(before, 5);
+  EXPECT_GT(during, 5);
+  EXPECT_GT(after, 5);
+}
+
+TEST(SensorFaultsOnTheWire, VioLossSendsNoOdometryInItsWindowAndOdometryAgainAfter) {
+  Board board, vio;
+  Running run(board, {"vio-loss@0.5+0.5"}, /*noise=*/false, "", test_wire::vio_to(vio));
+  const auto got = vio.receive_until(1.5, 10);
+  int before = 0, during = 0, after = 0;
+  for (const auto& a : got) {
+    if (!a.odometry) continue;
+    if (a.sim_s < kStart_s - kEps_s) ++before;
+    else if (a.sim_s < 1.0 - kEps_s) ++during;
+    else ++after;
+  }
+  EXPECT_GT(before, 5);  // 30 Hz
+  EXPECT_EQ(during, 0);
+  EXPECT_GT(after, 5);
+}
+
+}  // namespace
+}  // namespace hitl::hil
