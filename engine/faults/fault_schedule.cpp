@@ -75,6 +75,23 @@ void FaultSchedule::fold(double t_s) {
       case FaultKind::VioLoss: a.vio_loss = true; break;
       case FaultKind::HilDrop: pass *= 1.0 - v[0]; break;
       case FaultKind::HilDelay: a.hil_delay_s += v[0] * 1e-3; break;
+      case FaultKind::ImuNoise: a.imu_noise_scale *= v[0]; break;
+      case FaultKind::ImuStuck: a.imu_stuck = true; break;
+      case FaultKind::ImuClip:
+        a.imu_clip_accel_m_s2 = a.imu_clip_accel_m_s2 > 0 ? std::min(a.imu_clip_accel_m_s2, v[0]) : v[0];
+        a.imu_clip_gyro_rad_s = a.imu_clip_gyro_rad_s > 0 ? std::min(a.imu_clip_gyro_rad_s, v[1]) : v[1];
+        break;
+      case FaultKind::ImuVibration: a.vibrations.push_back({v[0], v[1], e.started_s}); break;
+      case FaultKind::MagStuck: a.mag_stuck = true; break;
+      case FaultKind::MagScale: a.mag_scale *= v[0]; break;
+      case FaultKind::BaroOffset: a.baro_offset_Pa += v[0]; break;
+      case FaultKind::BaroStuck: a.baro_stuck = true; break;
+      case FaultKind::GpsDrift:
+        a.gps_north_m += v[0] * (t_s - e.started_s);
+        a.gps_east_m += v[1] * (t_s - e.started_s);
+        a.gps_drift_NE_m_s += Eigen::Vector2d(v[0], v[1]);
+        break;
+      case FaultKind::GpsNoise: a.gps_noise_scale *= v[0]; break;
     }
   }
   a.hil_drop_p = 1.0 - pass;

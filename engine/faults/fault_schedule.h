@@ -33,7 +33,22 @@ struct ActiveFaults {
   Eigen::Vector3d accel_bias_FRD_m_s2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d gyro_bias_FRD_rad_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d mag_offset_FRD_gauss = Eigen::Vector3d::Zero();
-  double baro_offset_Pa = 0;  ///< baro-drift: rate x time since its start
+  double baro_offset_Pa = 0;  ///< baro-offset, and baro-drift: rate x time since its start
+  double imu_noise_scale = 1;
+  bool imu_stuck = false;
+  double imu_clip_accel_m_s2 = 0;  ///< 0: none (the smallest active range wins)
+  double imu_clip_gyro_rad_s = 0;
+  struct Vibration {
+    double amp_m_s2 = 0;
+    double freq_hz = 0;
+    double started_s = 0;  ///< its phase counts from here
+  };
+  std::vector<Vibration> vibrations;  ///< imu-vibration
+  bool mag_stuck = false;
+  double mag_scale = 1;
+  bool baro_stuck = false;
+  Eigen::Vector2d gps_drift_NE_m_s = Eigen::Vector2d::Zero();  ///< gps-drift: added to the reported velocity
+  double gps_noise_scale = 1;
   std::array<double, 4> motor_effectiveness{1.0, 1.0, 1.0, 1.0};
   bool vio_loss = false;
   double hil_drop_p = 0;

@@ -16,7 +16,15 @@ constexpr double kMaxMagOffset_gauss = 10;
 constexpr double kMaxBaroDrift_Pa_per_s = 10000;
 constexpr double kMaxMotorScale = 2;
 constexpr double kMaxHilDelay_ms = 5000;
-constexpr double kMaxTime_s = 86400;         ///< a day of simulated time
+constexpr double kMaxTime_s = 86400;
+constexpr double kMaxNoiseScale = 100;
+constexpr double kMaxClipAccel_m_s2 = 2000;  ///< above any MEMS full scale (+-200 g)
+constexpr double kMaxClipGyro_rad_s = 70;    ///< +-4000 deg/s
+constexpr double kMaxVibration_m_s2 = 500;
+constexpr double kMaxVibration_Hz = 5000;
+constexpr double kMaxMagScale = 10;
+constexpr double kMaxBaroOffset_Pa = 20000;
+constexpr double kMaxGpsDrift_m_s = 100;         ///< a day of simulated time
 
 std::string compact(double v) {
   char buf[32];
@@ -55,6 +63,23 @@ const std::vector<FaultInfo>& fault_catalogue() {
        "each datagram to the flight stack (a step's HIL_SENSOR, HIL_GPS, ...) is dropped with probability p (--seed)"},
       {FaultKind::HilDelay, "hil-delay", {{"ms", 0, kMaxHilDelay_ms}}, 1,
        "each datagram to the flight stack leaves this much later (queued; the 250 Hz loop does not wait)"},
+      {FaultKind::ImuNoise, "imu-noise", {{"k", 0, kMaxNoiseScale}}, 1,
+       "the IMU's error against truth (white noise and bias walk, accel and gyro) x k; 0: a perfect IMU"},
+      {FaultKind::ImuStuck, "imu-stuck", {}, 0, "the IMU repeats the accel and gyro it read last before the fault (a hung sensor)"},
+      {FaultKind::ImuClip, "imu-clip", {{"accel_m_s2", 0.1, kMaxClipAccel_m_s2}, {"gyro_rad_s", 0.01, kMaxClipGyro_rad_s}}, 2,
+       "the IMU clips each axis at +-accel_m_s2 and +-gyro_rad_s (a smaller full scale, saturation)"},
+      {FaultKind::ImuVibration, "imu-vibration", {{"amp_m_s2", 0, kMaxVibration_m_s2}, {"freq_hz", 0, kMaxVibration_Hz}}, 2,
+       "a sinusoidal acceleration of this amplitude and frequency at the IMU, body x and y (sampled at the IMU's rate: it aliases)"},
+      {FaultKind::MagStuck, "mag-stuck", {}, 0, "the magnetometer repeats the field it read last before the fault"},
+      {FaultKind::MagScale, "mag-scale", {{"k", 0, kMaxMagScale}}, 1,
+       "the magnetometer's reading x k (a gain error, soft iron); before mag-offset"},
+      {FaultKind::BaroOffset, "baro-offset", {{"pa", -kMaxBaroOffset_Pa, kMaxBaroOffset_Pa}}, 1,
+       "the static pressure + pa (a pressure step: a door, a prop wash; pressure_alt follows)"},
+      {FaultKind::BaroStuck, "baro-stuck", {}, 0, "the barometer repeats the pressure, altitude and temperature it read last"},
+      {FaultKind::GpsDrift, "gps-drift", {{"north_m_s", -kMaxGpsDrift_m_s, kMaxGpsDrift_m_s}, {"east_m_s", -kMaxGpsDrift_m_s, kMaxGpsDrift_m_s}}, 2,
+       "the reported position walks away at this rate from the fault's start, the velocity includes it (a slow, consistent spoof)"},
+      {FaultKind::GpsNoise, "gps-noise", {{"k", 0, kMaxNoiseScale}}, 1,
+       "the GPS's position error (wander and white noise) and velocity noise x k"},
   };
   return catalogue;
 }

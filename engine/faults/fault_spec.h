@@ -27,6 +27,16 @@ enum class FaultKind {
   VioLoss,     ///< no ODOMETRY to the VIO server
   HilDrop,     ///< each outgoing HIL datagram dropped with probability p (seeded)
   HilDelay,    ///< each outgoing HIL datagram held back this long
+  ImuNoise,      ///< the IMU's errors against truth (noise, bias walk) x k
+  ImuStuck,      ///< the IMU repeats its last reading
+  ImuClip,       ///< the IMU clips at a smaller full scale, m/s^2 and rad/s
+  ImuVibration,  ///< a sinusoidal acceleration at the IMU, m/s^2 at Hz
+  MagStuck,      ///< the magnetometer repeats its last reading
+  MagScale,      ///< the magnetometer's reading x k
+  BaroOffset,    ///< the static pressure offset, Pa
+  BaroStuck,     ///< the barometer repeats its last reading
+  GpsDrift,      ///< the GPS position walks away at a rate, m/s north and east (slow spoofing)
+  GpsNoise,      ///< the GPS's position and velocity errors x k
 };
 
 struct FaultArg {

@@ -56,6 +56,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   s.pacer.emplace(config.world.physics.step_s, config.speed);  // one step of simulated time per tick
   s.paths.emplace(config);
   s.fault_schedule = faults::FaultSchedule(config.faults);
+  s.sensor_faults.emplace(config.world.atmosphere);
   return std::unique_ptr<Session>(new Session(std::move(impl)));
 }
 

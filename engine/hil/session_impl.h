@@ -19,6 +19,7 @@
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/message_set.h"
 #include "engine/faults/fault_schedule.h"
+#include "engine/faults/sensor_faults.h"
 #include "engine/model/multicopter.h"
 #include "engine/model/touchdown_monitor.h"
 #include "engine/sensors/sensor_suite.h"
@@ -41,6 +42,7 @@ struct Session::Impl {
   std::optional<DataPaths> paths;
   std::optional<vehicle::TrajectoryFlight> pilot;
   faults::FaultSchedule fault_schedule;  ///< --fault, --scenario
+  std::optional<faults::SensorFaults> sensor_faults;  ///< what the sensor faults hold (stuck readings)
   mavlink::FrameEncoder pilot_encoder{mavlink::kGcsSystemId, mavlink::kCompIdMissionPlanner};  ///< a GCS's identity
 
   // Operator controls (the dashboard): requests from other threads, taken at the next step.

@@ -5,7 +5,6 @@
 #include <utility>
 
 #include "base/common/clock.h"
-#include "engine/faults/sensor_faults.h"
 #include "engine/hil/sensor_messages.h"
 #include "engine/hil/session_impl.h"
 #include "engine/frames/frames.h"
@@ -37,7 +36,7 @@ Status Session::Impl::step(EventSink& events) {
   apply_faults(events);
   // Sensors due at this time, with the active sensor faults.
   auto frame = sensors->sample_due(state);
-  faults::apply_sensor_faults(fault_schedule.active(), config.world.atmosphere, frame);
+  sensor_faults->apply(fault_schedule.active(), sim_time_s(), frame);
   say_imu_saturated(events);
   // Messages, flushed as one datagram to the flight stack; then VIO and truth.
   const double sent_s = monotonic_s();
@@ -63,6 +62,8 @@ void Session::Impl::apply_faults(EventSink& events) {
   const auto& active = fault_schedule.active();
   for (std::size_t i = 0; i < active.motor_effectiveness.size(); ++i) model->set_motor_effectiveness(i, active.motor_effectiveness[i]);
   stack->set_link_faults(active.hil_drop_p, active.hil_delay_s);
+  sensors->imu().set_noise_scale(active.imu_noise_scale);
+  sensors->gps().set_noise_scale(active.gps_noise_scale);
 }
 
 void Session::Impl::wait_next_tick(const std::atomic<bool>& stop) {

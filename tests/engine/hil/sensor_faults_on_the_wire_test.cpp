@@ -118,5 +118,36 @@ TEST(SensorFaultsOnTheWire, VioLossSendsNoOdometryInItsWindowAndOdometryAgainAft
   EXPECT_GT(after, 5);
 }
 
+TEST(SensorFaultsOnTheWire, ImuStuckRepeatsOneReadingWhileItLastsAndNoiseScaleWidensTheSpread) {
+  Board board;
+  Running run(board, {"imu-stuck@0.5+0.3", "imu-noise:5@1+0.5"});  // with noise
+  const auto got = board.receive_until(1.5, 10);
+  std::optional<mavlink::msg::HilSensor> held;
+  int stuck = 0;
+  std::vector<double> quiet, loud;  // xgyro, rad/s
+  for (const auto& a : got) {
+    if (!a.sensor || !(a.sensor->fields_updated & 8)) continue;
+    if (a.sim_s >= kStart_s - kEps_s && a.sim_s < 0.8 - kEps_s) {
+      if (!held) held = a.sensor;
+      EXPECT_EQ(a.sensor->xacc, held->xacc);
+      EXPECT_EQ(a.sensor->zgyro, held->zgyro);
+      ++stuck;
+    }
+    if (a.sim_s > 0.2 && a.sim_s < kStart_s) quiet.push_back(a.sensor->xgyro);
+    if (a.sim_s > 1.0 && a.sim_s < 1.5 - kEps_s) loud.push_back(a.sensor->xgyro);
+  }
+  EXPECT_GT(stuck, 60);  // 250 Hz for 0.3 s
+  auto sigma = [](const std::vector<double>& v) {
+    double m = 0, q = 0;
+    for (double x : v) m += x;
+    m /= static_cast<double>(v.size());
+    for (double x : v) q += (x - m) * (x - m);
+    return std::sqrt(q / static_cast<double>(v.size()));
+  };
+  ASSERT_GT(quiet.size(), 50u);
+  ASSERT_GT(loud.size(), 100u);
+  EXPECT_NEAR(sigma(loud) / sigma(quiet), 5.0, 1.5);
+}
+
 }  // namespace
 }  // namespace hitl::hil
