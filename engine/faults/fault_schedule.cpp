@@ -1,12 +1,14 @@
 #include "engine/faults/fault_schedule.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace hitl::faults {
 namespace {
 
 constexpr double kTimeEpsilon_s = 1e-9;
+constexpr double kDefaultTurbulenceTau_s = 2.0;
 
 std::string compact(double v) {
   char buf[32];
@@ -56,6 +58,7 @@ void FaultSchedule::fold(double t_s) {
   ActiveFaults a;
   double pass = 1.0;  // the chance a datagram gets through every hil-drop
   for (const auto& e : entries_) {
+    if (e.spec.kind == FaultKind::VioJump) a.vio_resets += e.state == State::Active ? 1 : e.state == State::Done ? 2 : 0;
     if (e.state != State::Active) continue;
     const auto& v = e.spec.args;
     switch (e.spec.kind) {
@@ -92,6 +95,27 @@ void FaultSchedule::fold(double t_s) {
         a.gps_drift_NE_m_s += Eigen::Vector2d(v[0], v[1]);
         break;
       case FaultKind::GpsNoise: a.gps_noise_scale *= v[0]; break;
+      case FaultKind::PropDamage:
+        a.motor_effectiveness[static_cast<std::size_t>(v[0])] *= v[1];
+        a.rotor_vibrations.push_back({static_cast<std::size_t>(v[0]), v[2]});
+        break;
+      case FaultKind::Payload: a.payload_kg += v[0]; break;
+      case FaultKind::Wind: a.wind_NED_m_s += Eigen::Vector3d(v[0], v[1], v.size() > 2 ? v[2] : 0.0); break;
+      case FaultKind::Gust: {
+        const double shape = 0.5 * (1.0 - std::cos(2.0 * M_PI * (t_s - e.started_s) / *e.spec.duration_s));
+        a.wind_NED_m_s += shape * Eigen::Vector3d(v[0], v[1], v.size() > 2 ? v[2] : 0.0);
+        break;
+      }
+      case FaultKind::Turbulence:
+        if (v[0] >= a.turbulence_sigma_m_s) {
+          a.turbulence_sigma_m_s = v[0];
+          a.turbulence_tau_s = v.size() > 1 ? v[1] : kDefaultTurbulenceTau_s;
+        }
+        break;
+      case FaultKind::ActuatorsStale: a.actuators_stale = true; break;
+      case FaultKind::VioDrift: a.vio_offset_NED_m += Eigen::Vector3d(v[0], v[1], v[2]) * (t_s - e.started_s); break;
+      case FaultKind::VioJump: a.vio_offset_NED_m += Eigen::Vector3d(v[0], v[1], v[2]); break;
+      case FaultKind::VioQuality: a.vio_quality = static_cast<int>(v[0]); break;
     }
   }
   a.hil_drop_p = 1.0 - pass;

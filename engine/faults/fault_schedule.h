@@ -49,6 +49,19 @@ struct ActiveFaults {
   bool baro_stuck = false;
   Eigen::Vector2d gps_drift_NE_m_s = Eigen::Vector2d::Zero();  ///< gps-drift: added to the reported velocity
   double gps_noise_scale = 1;
+  struct RotorVibration {
+    std::size_t motor = 0;
+    double amp_m_s2 = 0;
+  };
+  std::vector<RotorVibration> rotor_vibrations;  ///< prop-damage: once per revolution of the rotor
+  double payload_kg = 0;
+  Eigen::Vector3d wind_NED_m_s = Eigen::Vector3d::Zero();  ///< wind and gust (at its shape's value now)
+  double turbulence_sigma_m_s = 0;  ///< the largest active (with its tau)
+  double turbulence_tau_s = 0;
+  bool actuators_stale = false;
+  Eigen::Vector3d vio_offset_NED_m = Eigen::Vector3d::Zero();  ///< vio-drift and vio-jump
+  unsigned vio_resets = 0;  ///< each vio-jump's start and end, counted
+  std::optional<int> vio_quality;  ///< the latest vio-quality
   std::array<double, 4> motor_effectiveness{1.0, 1.0, 1.0, 1.0};
   bool vio_loss = false;
   double hil_drop_p = 0;

@@ -24,7 +24,12 @@ constexpr double kMaxVibration_m_s2 = 500;
 constexpr double kMaxVibration_Hz = 5000;
 constexpr double kMaxMagScale = 10;
 constexpr double kMaxBaroOffset_Pa = 20000;
-constexpr double kMaxGpsDrift_m_s = 100;         ///< a day of simulated time
+constexpr double kMaxGpsDrift_m_s = 100;
+constexpr double kMaxPayload_kg = 20;
+constexpr double kMaxWind_m_s = 50;
+constexpr double kMaxTurbulenceSigma_m_s = 20;
+constexpr double kMaxVioDrift_m_s = 10;
+constexpr double kMaxVioJump_m = 1000;         ///< a day of simulated time
 
 std::string compact(double v) {
   char buf[32];
@@ -80,6 +85,28 @@ const std::vector<FaultInfo>& fault_catalogue() {
        "the reported position walks away at this rate from the fault's start, the velocity includes it (a slow, consistent spoof)"},
       {FaultKind::GpsNoise, "gps-noise", {{"k", 0, kMaxNoiseScale}}, 1,
        "the GPS's position error (wander and white noise) and velocity noise x k"},
+      {FaultKind::PropDamage, "prop-damage", {{"i", 0, 3, true}, {"k", 0, kMaxMotorScale}, {"vib_m_s2", 0, kMaxVibration_m_s2}}, 3,
+       "motor i's thrust and torques x k (a chipped blade) and an imbalance: vib_m_s2 at the IMU once per revolution of rotor i"},
+      {FaultKind::Payload, "payload", {{"kg", 0, kMaxPayload_kg}}, 1,
+       "this mass hangs at the base origin (its weight pulls down; the inertia is the vehicle's own)"},
+      {FaultKind::Wind, "wind", {{"north_m_s", -kMaxWind_m_s, kMaxWind_m_s}, {"east_m_s", -kMaxWind_m_s, kMaxWind_m_s},
+                                 {"down_m_s", -kMaxWind_m_s, kMaxWind_m_s}}, 2,
+       "the air moves at this velocity (NED, blowing towards), added to the world's wind"},
+      {FaultKind::Gust, "gust", {{"north_m_s", -kMaxWind_m_s, kMaxWind_m_s}, {"east_m_s", -kMaxWind_m_s, kMaxWind_m_s},
+                                 {"down_m_s", -kMaxWind_m_s, kMaxWind_m_s}}, 2,
+       "a 1-cosine gust: the added wind rises from 0 to this peak at half the duration and back to 0 at its end", true},
+      {FaultKind::Turbulence, "turbulence", {{"sigma_m_s", 0, kMaxTurbulenceSigma_m_s}, {"tau_s", 0.05, 100}}, 1,
+       "added turbulence: each axis a Gauss-Markov process of this sigma and correlation time (default 2 s), seeded"},
+      {FaultKind::ActuatorsStale, "actuators-stale", {}, 0,
+       "the board's actuator stream goes stale: the model holds the last commands it had, whatever the board sends"},
+      {FaultKind::VioDrift, "vio-drift", {{"north_m_s", -kMaxVioDrift_m_s, kMaxVioDrift_m_s}, {"east_m_s", -kMaxVioDrift_m_s, kMaxVioDrift_m_s},
+                                          {"down_m_s", -kMaxVioDrift_m_s, kMaxVioDrift_m_s}}, 3,
+       "the ODOMETRY position walks away at this rate (NED) from the fault's start (VIO drift); velocity unchanged"},
+      {FaultKind::VioJump, "vio-jump", {{"north_m", -kMaxVioJump_m, kMaxVioJump_m}, {"east_m", -kMaxVioJump_m, kMaxVioJump_m},
+                                        {"down_m", -kMaxVioJump_m, kMaxVioJump_m}}, 3,
+       "the ODOMETRY position jumps by this offset (NED) and reset_counter goes up by one, at the start and again at the end"},
+      {FaultKind::VioQuality, "vio-quality", {{"percent", -1, 100, true}}, 1,
+       "ODOMETRY's quality reports this (-1: failed, 0: unknown, 1 worst .. 100 best)"},
   };
   return catalogue;
 }
@@ -165,6 +192,8 @@ Expected<FaultSpec> make_fault(const std::string& name, const std::vector<double
   if (duration_s && (!std::isfinite(*duration_s) || !(*duration_s > 0) || *duration_s > kMaxTime_s))
     return Error{where + ": the duration must be more than 0 and at most " + compact(kMaxTime_s) + " s (got " +
                  compact(*duration_s) + ")"};
+  if (f->needs_duration && !duration_s)
+    return Error{where + ": needs a duration (" + std::string(f->name) + "@T+DUR; its shape spans it)"};
   FaultSpec spec;
   spec.kind = f->kind;
   spec.args = args;

@@ -37,6 +37,15 @@ enum class FaultKind {
   BaroStuck,     ///< the barometer repeats its last reading
   GpsDrift,      ///< the GPS position walks away at a rate, m/s north and east (slow spoofing)
   GpsNoise,      ///< the GPS's position and velocity errors x k
+  PropDamage,      ///< motor i's thrust and torques x k plus a once-per-revolution vibration at the IMU
+  Payload,         ///< added mass hanging at the base origin, kg
+  Wind,            ///< added steady wind, NED m/s
+  Gust,            ///< a 1-cosine gust of this peak over the fault's duration, NED m/s
+  Turbulence,      ///< added Gauss-Markov turbulence, sigma m/s and correlation time s
+  ActuatorsStale,  ///< the board's actuator stream stale: the model holds the last commands
+  VioDrift,        ///< the VIO position walks away at a rate, NED m/s
+  VioJump,         ///< the VIO position jumps (reset_counter incremented at start and end), NED m
+  VioQuality,      ///< ODOMETRY's quality field reports this percentage
 };
 
 struct FaultArg {
@@ -52,6 +61,7 @@ struct FaultInfo {
   std::vector<FaultArg> args;
   std::size_t required_args;  ///< the rest are optional
   const char* meaning;        ///< one line: what it does where
+  bool needs_duration = false;  ///< its shape spans its duration (gust)
 };
 
 /// Every fault the simulator knows, in the order docs/faults.md lists them.

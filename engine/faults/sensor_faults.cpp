@@ -36,13 +36,22 @@ void offset_lat_lon(double& lat_deg, double& lon_deg, double north_m, double eas
   lon_deg += east_m / (prime_vertical_m * std::cos(phi)) * kDegPerRad;
 }
 
-void SensorFaults::apply(const ActiveFaults& active, double t_s, sensors::SensorFrame& frame) {
+void SensorFaults::apply(const ActiveFaults& active, double t_s, sensors::SensorFrame& frame,
+                         const std::array<double, 4>& rotor_speed_rad_s) {
+  const double dt_s = last_t_s_ >= 0 && t_s > last_t_s_ ? t_s - last_t_s_ : 0.0;
+  last_t_s_ = t_s;
+  for (std::size_t i = 0; i < rotor_angle_rad_.size(); ++i)
+    rotor_angle_rad_[i] = std::fmod(rotor_angle_rad_[i] + rotor_speed_rad_s[i] * dt_s, 2.0 * M_PI);
   if (frame.imu) {
     frame.imu->accel_FRD_m_s2 += active.accel_bias_FRD_m_s2;
     frame.imu->gyro_FRD_rad_s += active.gyro_bias_FRD_rad_s;
     for (const auto& v : active.vibrations) {
       const double phase_rad = 2.0 * M_PI * v.freq_hz * (t_s - v.started_s);
       frame.imu->accel_FRD_m_s2 += v.amp_m_s2 * Eigen::Vector3d(std::cos(phase_rad), std::sin(phase_rad), 0.0);
+    }
+    for (const auto& r : active.rotor_vibrations) {
+      const double phi_rad = rotor_angle_rad_[r.motor];
+      frame.imu->accel_FRD_m_s2 += r.amp_m_s2 * Eigen::Vector3d(std::cos(phi_rad), std::sin(phi_rad), 0.0);
     }
     if (active.imu_clip_accel_m_s2 > 0) frame.imu->accel_FRD_m_s2 = frame.imu->accel_FRD_m_s2.cwiseMax(-active.imu_clip_accel_m_s2).cwiseMin(active.imu_clip_accel_m_s2);
     if (active.imu_clip_gyro_rad_s > 0) frame.imu->gyro_FRD_rad_s = frame.imu->gyro_FRD_rad_s.cwiseMax(-active.imu_clip_gyro_rad_s).cwiseMin(active.imu_clip_gyro_rad_s);

@@ -2,6 +2,7 @@
 // model sampled the truth (imu-noise and gps-noise act inside the sensor models: the session sets
 // their noise scale before sampling). In this order:
 //   IMU:  accel_FRD += accel_bias + sum of vibrations A (cos 2 pi f t, sin 2 pi f t, 0)
+//                    + sum of prop-damage imbalances A (cos phi_i, sin phi_i, 0), phi_i rotor i's angle
 //         gyro_FRD  += gyro_bias;  both clipped at +-the imu-clip range;  stuck: the last reading
 //   mag:  mag_FRD = mag_FRD x mag_scale + mag_offset;  stuck: the last reading
 //   baro: pressure += baro_offset_Pa, pressure_alt = ISA altitude of that pressure;  stuck: the last
@@ -12,6 +13,7 @@
 // fault started; the sample times go on.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "engine/faults/fault_schedule.h"
@@ -23,11 +25,15 @@ namespace hitl::faults {
 class SensorFaults {
  public:
   explicit SensorFaults(const model::AtmosphereConfig& atmosphere) : atmosphere_(atmosphere) {}
-  /// Applies `active` to the samples in `frame` at simulated time `t_s`.
-  void apply(const ActiveFaults& active, double t_s, sensors::SensorFrame& frame);
+  /// Applies `active` to the samples in `frame` at simulated time `t_s` (called every step: the
+  /// rotors' angles integrate `rotor_speed_rad_s` over time).
+  void apply(const ActiveFaults& active, double t_s, sensors::SensorFrame& frame,
+             const std::array<double, 4>& rotor_speed_rad_s = {});
 
  private:
   model::AtmosphereConfig atmosphere_;
+  std::array<double, 4> rotor_angle_rad_{};
+  double last_t_s_ = -1;
   std::optional<sensors::ImuSample> last_imu_, held_imu_;
   std::optional<sensors::MagSample> last_mag_, held_mag_;
   std::optional<sensors::BaroSample> last_baro_, held_baro_;

@@ -174,12 +174,17 @@ void ClientServices::send_truth_if_due(const sensors::GroundTruth& truth, uint64
   broadcast_own(odometry);
 }
 
-bool ClientServices::send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s, bool lost) {
+bool ClientServices::send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s,
+                                     const faults::ActiveFaults& faults) {
   if (!vio_ || sim_s + 1e-9 < next_vio_s_) return false;
   ++vio_k_;
   next_vio_s_ = static_cast<double>(vio_k_) / config_.vio_rate_hz;
-  if (lost) return false;
-  const auto odometry = make_odometry(truth, time_usec);
+  if (faults.vio_loss) return false;
+  sensors::GroundTruth seen = truth;
+  seen.p_NED_m += faults.vio_offset_NED_m;
+  auto odometry = make_odometry(seen, time_usec);
+  odometry.reset_counter = static_cast<uint8_t>(odometry.reset_counter + faults.vio_resets);  // wraps as on the wire
+  if (faults.vio_quality) odometry.quality = static_cast<int8_t>(*faults.vio_quality);
   mavlink::FrameBuffer buf;
   const std::size_t n = vio_encoder_.encode(odometry, buf);
   if (n == 0) return true;

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "base/common/expected.h"
+#include "engine/faults/fault_schedule.h"
 #include "engine/hil/recording.h"
 #include "engine/hil/session_config.h"
 #include "engine/hil/session_events.h"
@@ -56,8 +57,10 @@ class ClientServices {
   /// Truth to clients when due at `sim_s`.
   void send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s);
   /// ODOMETRY to the VIO server when due at `sim_s`; true when one was sent (or refused).
-  /// `lost` (vio-loss): the schedule moves on but nothing is sent.
-  bool send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s, bool lost = false);
+  /// The VIO faults (docs/faults.md): vio-loss: the schedule moves on but nothing is sent;
+  /// vio-drift/vio-jump move the position, vio-jump counts reset_counter, vio-quality sets quality.
+  bool send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s,
+                       const faults::ActiveFaults& faults = {});
   /// The VIO link's first refused send to each destination, once.
   std::vector<std::string> take_send_errors();
 

@@ -29,14 +29,15 @@ Status Session::Impl::step(EventSink& events) {
   if (!std::exchange(resumed, false) && std::exchange(sensor_sent, false))
     stack->lockstep_wait(events, [&] { drain(monotonic_s()); });
   // Actuator commands, physics step.
-  model->set_motor_commands(stack->actuators().commands(clock.unpaused_s(monotonic_s())));
+  // (actuators-stale: the model holds the last commands it had, whatever the board sends)
+  if (!fault_schedule.active().actuators_stale) model->set_motor_commands(stack->actuators().commands(clock.unpaused_s(monotonic_s())));
   if (auto st = model->step(); !st) return st;
   const auto& state = model->state();
   touchdowns.observe(state);
   apply_faults(events);
   // Sensors due at this time, with the active sensor faults.
   auto frame = sensors->sample_due(state);
-  sensor_faults->apply(fault_schedule.active(), sim_time_s(), frame);
+  sensor_faults->apply(fault_schedule.active(), sim_time_s(), frame, state.rotor_speed_rad_s);
   say_imu_saturated(events);
   // Messages, flushed as one datagram to the flight stack; then VIO and truth.
   const double sent_s = monotonic_s();
@@ -44,7 +45,7 @@ Status Session::Impl::step(EventSink& events) {
   send_messages(frame, t_us, sent_s, events);
   stack->flush();
   stack->actuators().take_new();  // answers counted from here on belong to these sensors
-  if (services->send_vio_if_due(frame.truth, t_us, sim_time_s(), fault_schedule.active().vio_loss)) paths->on_odometry(sent_s);
+  if (services->send_vio_if_due(frame.truth, t_us, sim_time_s(), fault_schedule.active())) paths->on_odometry(sent_s);
   services->send_truth_if_due(frame.truth, t_us, sim_time_s());
   say_send_errors(events);
   stack->check_answered(events);
@@ -64,6 +65,8 @@ void Session::Impl::apply_faults(EventSink& events) {
   stack->set_link_faults(active.hil_drop_p, active.hil_delay_s);
   sensors->imu().set_noise_scale(active.imu_noise_scale);
   sensors->gps().set_noise_scale(active.gps_noise_scale);
+  model->set_wind_event(frames::ned_to_enu(active.wind_NED_m_s), active.turbulence_sigma_m_s, active.turbulence_tau_s);
+  model->set_external_force_ENU_N({0.0, 0.0, -active.payload_kg * config.world.gravity_m_s2});  // payload: its weight
 }
 
 void Session::Impl::wait_next_tick(const std::atomic<bool>& stop) {

@@ -186,5 +186,47 @@ TEST(SensorFaults, ImuNoiseScalesTheErrorsAgainstTruth) {
   }
 }
 
+TEST(SensorFaults, PropDamageShakesTheImuOncePerRevolutionOfItsRotor) {
+  FaultSchedule schedule({*parse_fault("prop-damage:1,0.7,4@0")});
+  schedule.update(0);
+  const auto& a = schedule.active();
+  EXPECT_DOUBLE_EQ(a.motor_effectiveness[1], 0.7);
+  SensorFaults faults(model::default_world_config().atmosphere);
+  const double omega_rad_s = 2 * M_PI * 30;  // 30 rev/s
+  for (int k = 0; k <= 10; ++k) {
+    const double t = k * 0.004;
+    auto f = frame_with_everything();
+    faults.apply(a, t, f, {0, omega_rad_s, 0, 0});
+    EXPECT_NEAR(f.imu->accel_FRD_m_s2.x(), 4 * std::cos(omega_rad_s * t), 1e-9) << t;
+    EXPECT_NEAR(f.imu->accel_FRD_m_s2.y(), 4 * std::sin(omega_rad_s * t), 1e-9) << t;
+  }
+}
+
+TEST(FaultSchedule, GustRisesAndFallsAsOneMinusCosineWindAndPayloadAddVioJumpsCountResets) {
+  FaultSchedule schedule({*parse_fault("gust:6,0@10+4"), *parse_fault("wind:0,2,-1@0"), *parse_fault("payload:0.3@0"),
+                          *parse_fault("vio-jump:1,2,0@1+1"), *parse_fault("actuators-stale@3+1")});
+  schedule.update(0);
+  EXPECT_TRUE(schedule.active().wind_NED_m_s.isApprox(Eigen::Vector3d(0, 2, -1)));
+  EXPECT_DOUBLE_EQ(schedule.active().payload_kg, 0.3);
+  schedule.update(1);
+  EXPECT_EQ(schedule.active().vio_resets, 1u);
+  EXPECT_TRUE(schedule.active().vio_offset_NED_m.isApprox(Eigen::Vector3d(1, 2, 0)));
+  schedule.update(2);
+  EXPECT_EQ(schedule.active().vio_resets, 2u);  // back: another reset
+  EXPECT_TRUE(schedule.active().vio_offset_NED_m.isZero());
+  schedule.update(3);
+  EXPECT_TRUE(schedule.active().actuators_stale);
+  schedule.update(10);
+  EXPECT_NEAR(schedule.active().wind_NED_m_s.x(), 0, 1e-9);
+  schedule.update(11);
+  EXPECT_NEAR(schedule.active().wind_NED_m_s.x(), 3, 1e-9);
+  schedule.update(12);
+  EXPECT_NEAR(schedule.active().wind_NED_m_s.x(), 6, 1e-9);  // the peak at half the duration
+  EXPECT_FALSE(schedule.active().actuators_stale);
+  schedule.update(14);
+  EXPECT_NEAR(schedule.active().wind_NED_m_s.x(), 0, 1e-9);
+  EXPECT_FALSE(parse_fault("gust:6,0@10"));  // a gust needs its duration
+}
+
 }  // namespace
 }  // namespace hitl::faults

@@ -118,6 +118,38 @@ TEST(SensorFaultsOnTheWire, VioLossSendsNoOdometryInItsWindowAndOdometryAgainAft
   EXPECT_GT(after, 5);
 }
 
+TEST(SensorFaultsOnTheWire, VioJumpMovesOdometryAndCountsResetsQualityAndDriftAsSet) {
+  Board board, vio;
+  Running run(board, {"vio-jump:2,-1,0.5@0.5+0.5", "vio-quality:20@0.5+0.5", "vio-drift:1,0,0@1.2"}, /*noise=*/false, "",
+              test_wire::vio_to(vio));
+  const auto got = vio.receive_until(1.8, 10);
+  std::optional<Eigen::Vector3d> before;
+  int during = 0, drifting = 0;
+  for (const auto& a : got) {
+    if (!a.odometry) continue;
+    const auto& o = *a.odometry;
+    const Eigen::Vector3d p_NED_m(o.x, o.y, o.z);
+    if (a.sim_s > 0.3 && a.sim_s < kStart_s - kEps_s) {
+      before = p_NED_m;  // at rest on its gear: the same place
+      EXPECT_EQ(o.reset_counter, 0);
+      EXPECT_EQ(o.quality, 100);
+    } else if (a.sim_s >= kStart_s - kEps_s && a.sim_s < 1.0 - kEps_s && before) {
+      EXPECT_TRUE((p_NED_m - *before).isApprox(Eigen::Vector3d(2, -1, 0.5), 1e-3)) << (p_NED_m - *before).transpose();
+      EXPECT_EQ(o.reset_counter, 1);
+      EXPECT_EQ(o.quality, 20);
+      ++during;
+    } else if (a.sim_s >= 1.0 - kEps_s && before) {
+      EXPECT_EQ(o.reset_counter, 2);  // the jump back is a reset too
+      EXPECT_EQ(o.quality, 100);
+      const double drift_m = a.sim_s >= 1.2 - kEps_s ? 1.0 * (a.sim_s - 1.2) : 0.0;
+      EXPECT_NEAR(p_NED_m.x() - before->x(), drift_m, 0.01) << a.sim_s;
+      drifting += drift_m > 0.2 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(during, 10);
+  EXPECT_GT(drifting, 3);
+}
+
 TEST(SensorFaultsOnTheWire, ImuStuckRepeatsOneReadingWhileItLastsAndNoiseScaleWidensTheSpread) {
   Board board;
   Running run(board, {"imu-stuck@0.5+0.3", "imu-noise:5@1+0.5"});  // with noise
