@@ -56,7 +56,9 @@ std::vector<FaultChange> FaultSchedule::update(double t_s) {
 
 void FaultSchedule::fold(double t_s) {
   ActiveFaults a;
-  double pass = 1.0;  // the chance a datagram gets through every hil-drop
+  // Chances that nothing happens to a datagram, over every active fault: 1 - p combined.
+  double hil_pass = 1.0, vio_pass = 1.0, hil_keep = 1.0, vio_keep = 1.0, hil_single = 1.0, vio_single = 1.0;
+  auto rate = [](LinkImpairment& l, double hz) { l.max_rate_hz = l.max_rate_hz > 0 ? std::min(l.max_rate_hz, hz) : hz; };
   for (const auto& e : entries_) {
     if (e.spec.kind == FaultKind::VioJump) a.vio_resets += e.state == State::Active ? 1 : e.state == State::Done ? 2 : 0;
     if (e.state != State::Active) continue;
@@ -76,8 +78,20 @@ void FaultSchedule::fold(double t_s) {
       case FaultKind::BaroDrift: a.baro_offset_Pa += v[0] * (t_s - e.started_s); break;
       case FaultKind::Motor: a.motor_effectiveness[static_cast<std::size_t>(v[0])] *= v[1]; break;
       case FaultKind::VioLoss: a.vio_loss = true; break;
-      case FaultKind::HilDrop: pass *= 1.0 - v[0]; break;
-      case FaultKind::HilDelay: a.hil_delay_s += v[0] * 1e-3; break;
+      case FaultKind::HilDrop: hil_pass *= 1.0 - v[0]; break;
+      case FaultKind::HilDelay: a.hil_link.delay_s += v[0] * 1e-3; break;
+      case FaultKind::HilBurst: a.hil_link.burst_bad_p = v[0], a.hil_link.burst_good_p = v[1]; break;
+      case FaultKind::HilJitter: a.hil_link.jitter_s += v[0] * 1e-3; break;
+      case FaultKind::HilReorder: hil_keep *= 1.0 - v[0]; break;
+      case FaultKind::HilDuplicate: hil_single *= 1.0 - v[0]; break;
+      case FaultKind::HilRate: rate(a.hil_link, v[0]); break;
+      case FaultKind::VioDrop: vio_pass *= 1.0 - v[0]; break;
+      case FaultKind::VioDelay: a.vio_link.delay_s += v[0] * 1e-3; break;
+      case FaultKind::VioBurst: a.vio_link.burst_bad_p = v[0], a.vio_link.burst_good_p = v[1]; break;
+      case FaultKind::VioJitter: a.vio_link.jitter_s += v[0] * 1e-3; break;
+      case FaultKind::VioReorder: vio_keep *= 1.0 - v[0]; break;
+      case FaultKind::VioDuplicate: vio_single *= 1.0 - v[0]; break;
+      case FaultKind::VioRate: rate(a.vio_link, v[0]); break;
       case FaultKind::ImuNoise: a.imu_noise_scale *= v[0]; break;
       case FaultKind::ImuStuck: a.imu_stuck = true; break;
       case FaultKind::ImuClip:
@@ -118,7 +132,12 @@ void FaultSchedule::fold(double t_s) {
       case FaultKind::VioQuality: a.vio_quality = static_cast<int>(v[0]); break;
     }
   }
-  a.hil_drop_p = 1.0 - pass;
+  a.hil_link.drop_p = 1.0 - hil_pass;
+  a.vio_link.drop_p = 1.0 - vio_pass;
+  a.hil_link.reorder_p = 1.0 - hil_keep;
+  a.vio_link.reorder_p = 1.0 - vio_keep;
+  a.hil_link.duplicate_p = 1.0 - hil_single;
+  a.vio_link.duplicate_p = 1.0 - vio_single;
   active_ = a;
 }
 

@@ -23,8 +23,24 @@ struct GpsReport {
   double epv_m = 0;
 };
 
+/// What the faults do to one link's datagrams (engine/hil/link_faults.h carries it out).
+struct LinkImpairment {
+  double drop_p = 0;           ///< hil-drop / vio-drop, independent draws combined
+  double burst_bad_p = 0;      ///< Gilbert-Elliott: good -> bad per datagram (0: no bursts)
+  double burst_good_p = 1;     ///< bad -> good per datagram
+  double delay_s = 0;
+  double jitter_s = 0;         ///< up to this much more, uniform
+  double reorder_p = 0;
+  double duplicate_p = 0;
+  double max_rate_hz = 0;      ///< 0: no limit
+  bool any() const {
+    return drop_p > 0 || burst_bad_p > 0 || delay_s > 0 || jitter_s > 0 || reorder_p > 0 || duplicate_p > 0 || max_rate_hz > 0;
+  }
+};
+
 /// Everything active at one time, folded: biases and offsets add, motor scales and the chances of a
-/// datagram getting through multiply, delays add, the latest gps-degrade wins.
+/// datagram getting through multiply, delays add, the latest gps-degrade wins; on a link, the latest
+/// burst wins, the lowest rate, jitters add, reorder and duplicate chances combine as drops do.
 struct ActiveFaults {
   bool gps_loss = false;
   double gps_north_m = 0;
@@ -64,8 +80,8 @@ struct ActiveFaults {
   std::optional<int> vio_quality;  ///< the latest vio-quality
   std::array<double, 4> motor_effectiveness{1.0, 1.0, 1.0, 1.0};
   bool vio_loss = false;
-  double hil_drop_p = 0;
-  double hil_delay_s = 0;
+  LinkImpairment hil_link;  ///< to the flight stack
+  LinkImpairment vio_link;  ///< ODOMETRY to the VIO server
 };
 
 /// One fault's start and end as it happened (the summary's `faults`).

@@ -29,7 +29,8 @@ constexpr double kMaxPayload_kg = 20;
 constexpr double kMaxWind_m_s = 50;
 constexpr double kMaxTurbulenceSigma_m_s = 20;
 constexpr double kMaxVioDrift_m_s = 10;
-constexpr double kMaxVioJump_m = 1000;         ///< a day of simulated time
+constexpr double kMaxVioJump_m = 1000;
+constexpr double kMaxLinkRate_Hz = 10000;         ///< a day of simulated time
 
 std::string compact(double v) {
   char buf[32];
@@ -107,6 +108,21 @@ const std::vector<FaultInfo>& fault_catalogue() {
        "the ODOMETRY position jumps by this offset (NED) and reset_counter goes up by one, at the start and again at the end"},
       {FaultKind::VioQuality, "vio-quality", {{"percent", -1, 100, true}}, 1,
        "ODOMETRY's quality reports this (-1: failed, 0: unknown, 1 worst .. 100 best)"},
+      {FaultKind::HilBurst, "hil-burst", {{"p_bad", 0, 1}, {"p_good", 0.001, 1}}, 2,
+       "burst loss on the HIL link (Gilbert-Elliott): each datagram the link turns bad with p_bad, back with p_good; all lost while bad"},
+      {FaultKind::HilJitter, "hil-jitter", {{"ms", 0, kMaxHilDelay_ms}}, 1,
+       "each datagram to the flight stack leaves up to ms later (uniform, seeded); order is kept"},
+      {FaultKind::HilReorder, "hil-reorder", {{"p", 0, 1}}, 1, "each datagram to the flight stack swaps places with the next with probability p"},
+      {FaultKind::HilDuplicate, "hil-dup", {{"p", 0, 1}}, 1, "each datagram to the flight stack is sent twice with probability p"},
+      {FaultKind::HilRate, "hil-rate", {{"hz", 0.1, kMaxLinkRate_Hz}}, 1,
+       "the HIL link carries at most hz datagrams a second (a token bucket; the rest are dropped)"},
+      {FaultKind::VioDrop, "vio-drop", {{"p", 0, 1}}, 1, "each ODOMETRY to the VIO server is dropped with probability p"},
+      {FaultKind::VioDelay, "vio-delay", {{"ms", 0, kMaxHilDelay_ms}}, 1, "each ODOMETRY leaves this much later (queued; order kept)"},
+      {FaultKind::VioBurst, "vio-burst", {{"p_bad", 0, 1}, {"p_good", 0.001, 1}}, 2, "burst loss on the VIO link (Gilbert-Elliott, as hil-burst)"},
+      {FaultKind::VioJitter, "vio-jitter", {{"ms", 0, kMaxHilDelay_ms}}, 1, "each ODOMETRY leaves up to ms later (uniform, seeded); order is kept"},
+      {FaultKind::VioReorder, "vio-reorder", {{"p", 0, 1}}, 1, "each ODOMETRY swaps places with the next with probability p"},
+      {FaultKind::VioDuplicate, "vio-dup", {{"p", 0, 1}}, 1, "each ODOMETRY is sent twice with probability p"},
+      {FaultKind::VioRate, "vio-rate", {{"hz", 0.1, kMaxLinkRate_Hz}}, 1, "the VIO link carries at most hz ODOMETRY a second (the rest dropped)"},
   };
   return catalogue;
 }

@@ -46,6 +46,9 @@ enum class FaultKind {
   VioDrift,        ///< the VIO position walks away at a rate, NED m/s
   VioJump,         ///< the VIO position jumps (reset_counter incremented at start and end), NED m
   VioQuality,      ///< ODOMETRY's quality field reports this percentage
+  // the links' faults beyond drop and delay; each on the HIL link (to the flight stack) and the VIO link
+  HilBurst, HilJitter, HilReorder, HilDuplicate, HilRate,
+  VioDrop, VioDelay, VioBurst, VioJitter, VioReorder, VioDuplicate, VioRate,
 };
 
 struct FaultArg {

@@ -61,6 +61,12 @@ class ClientServices {
   /// vio-drift/vio-jump move the position, vio-jump counts reset_counter, vio-quality sets quality.
   bool send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s,
                        const faults::ActiveFaults& faults = {});
+  // --- the VIO link's faults (link_faults.h) ----------------------------------------------------
+  void set_vio_link_faults(const faults::LinkImpairment& impairment) { vio_faults_.set(impairment); }
+  /// Sends the held ODOMETRY due by `now_s` (the run loop calls it between ticks).
+  void release_vio_delayed(double now_s);
+  std::optional<double> next_vio_delayed_s() const { return vio_faults_.next_due_s(); }
+  const LinkFaults& vio_link_faults() const { return vio_faults_; }
   /// The VIO link's first refused send to each destination, once.
   std::vector<std::string> take_send_errors();
 
@@ -80,6 +86,8 @@ class ClientServices {
   template <class M>
   void broadcast_own(const M& message);
   void send_doctor_status(uint32_t boot_ms, const SessionStatus& status);
+  /// One ODOMETRY frame onto the VIO link (recorded as it leaves, counted).
+  void send_vio_frame(std::span<const uint8_t> frame, bool counted);
 
   const SessionConfig& config_;
   StackLink& stack_;
@@ -93,6 +101,7 @@ class ClientServices {
   mavlink::FrameEncoder own_encoder_;  ///< the session's status and truth to clients
   std::unique_ptr<net::Link> vio_;
   mavlink::FrameEncoder vio_encoder_;  ///< the VIO link's own sequence
+  LinkFaults vio_faults_;
   double next_status_wall_s_ = 0;
   double next_vio_s_ = 0;
   uint64_t vio_k_ = 0;

@@ -1,5 +1,6 @@
 // The session's tick (docs/architecture.md "The session"): one step of simulated time, in the
 // design's order. Runs on the one thread that owns time.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -62,7 +63,8 @@ void Session::Impl::apply_faults(EventSink& events) {
   }
   const auto& active = fault_schedule.active();
   for (std::size_t i = 0; i < active.motor_effectiveness.size(); ++i) model->set_motor_effectiveness(i, active.motor_effectiveness[i]);
-  stack->set_link_faults(active.hil_drop_p, active.hil_delay_s);
+  stack->set_link_faults(active.hil_link);
+  services->set_vio_link_faults(active.vio_link);
   sensors->imu().set_noise_scale(active.imu_noise_scale);
   sensors->gps().set_noise_scale(active.gps_noise_scale);
   model->set_wind_event(frames::ned_to_enu(active.wind_NED_m_s), active.turbulence_sigma_m_s, active.turbulence_tau_s);
@@ -71,10 +73,14 @@ void Session::Impl::apply_faults(EventSink& events) {
 
 void Session::Impl::wait_next_tick(const std::atomic<bool>& stop) {
   // Held datagrams due before the next tick are sent on time, between ticks.
-  while (const auto due_s = stack->next_delayed_s()) {
-    if (stop.load() || *due_s >= pacer->next_due_s()) break;
-    sleep_until_monotonic_s(*due_s);
+  for (;;) {
+    const auto hil_s = stack->next_delayed_s(), vio_s = services->next_vio_delayed_s();
+    if (!hil_s && !vio_s) break;
+    const double due_s = std::min(hil_s.value_or(vio_s.value_or(0)), vio_s.value_or(hil_s.value_or(0)));
+    if (stop.load() || due_s >= pacer->next_due_s()) break;
+    sleep_until_monotonic_s(due_s);
     stack->release_delayed(monotonic_s());
+    services->release_vio_delayed(monotonic_s());
   }
   pacer->wait_next(&stop);
 }
@@ -186,8 +192,8 @@ void Session::Impl::publish() {
                           pilot ? &*pilot : nullptr, paths->stats(now_s), clock.paused(), resets, recording.error()});
   s.active_faults = fault_schedule.active_texts();
   s.faults = fault_schedule.records();
-  s.hil_dropped_datagrams = stack->link_faults().dropped_datagrams();
-  s.hil_delayed_datagrams = stack->link_faults().delayed_datagrams();
+  s.hil_link_faults = stack->link_faults().counts();
+  s.vio_link_faults = services->vio_link_faults().counts();
   std::lock_guard<std::mutex> lock(snapshot_mutex);
   published = std::move(s);
 }

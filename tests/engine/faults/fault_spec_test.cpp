@@ -98,7 +98,7 @@ TEST(FaultSchedule, StartsAndEndsAtSimulatedTimesAndFoldsWhatIsActive) {
   const auto& a = s.active();
   EXPECT_FALSE(a.gps_loss);
   EXPECT_DOUBLE_EQ(a.motor_effectiveness[2], 0.5);
-  EXPECT_DOUBLE_EQ(a.hil_drop_p, 0.75);  // two independent drops: 1 - 0.5 * 0.5
+  EXPECT_DOUBLE_EQ(a.hil_link.drop_p, 0.75);  // two independent drops: 1 - 0.5 * 0.5
   EXPECT_NEAR(a.baro_offset_Pa, 10 * (0.040 - 0.004), 1e-9);
   ASSERT_EQ(s.records().size(), 5u);
   EXPECT_EQ(s.records()[4].name, "gps-loss");

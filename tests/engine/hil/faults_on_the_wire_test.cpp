@@ -87,7 +87,33 @@ TEST(FaultsOnTheWire, HilDelayArrivesLaterByTheSettingWithoutLateTicks) {
   EXPECT_EQ(missing, 0);
   const auto s = run.snapshot();
   EXPECT_LE(s.late_ticks, 2u) << "the 250 Hz loop must not wait for the held datagrams";
-  EXPECT_GT(s.hil_delayed_datagrams, 200u);
+  EXPECT_GT(s.hil_link_faults.delayed, 200u);
+}
+
+TEST(FaultsOnTheWire, VioDelayArrivesLaterByTheSettingAtTheVioServerOnlyOnThatLink) {
+  Board board, vio;
+  Running run(board, {"vio-delay:20@1+1", "vio-dup:1@2.2"}, true, "", test_wire::vio_to(vio));
+  const auto got = vio.receive_until(2.8, 10);
+  std::vector<double> base, delayed;
+  int duplicated = 0;
+  double last_sim_s = -1;
+  for (const auto& a : got) {
+    if (!a.odometry) continue;
+    const double offset_s = a.wall_s - a.sim_s;
+    if (a.sim_s > 0.3 && a.sim_s < 0.95) base.push_back(offset_s);
+    if (a.sim_s > 1.1 && a.sim_s < 1.9) delayed.push_back(offset_s);
+    if (a.sim_s == last_sim_s) ++duplicated;
+    last_sim_s = a.sim_s;
+  }
+  ASSERT_GT(base.size(), 15u);
+  ASSERT_GT(delayed.size(), 20u);
+  const double measured_ms = (median(delayed) - median(base)) * 1e3;
+  std::printf("vio-delay:20 measured %.3f ms at the VIO server (median over %zu ODOMETRY)\n", measured_ms, delayed.size());
+  EXPECT_NEAR(measured_ms, 20.0, 1.0);
+  EXPECT_GT(duplicated, 10);  // vio-dup:1 from 2.2 s: every ODOMETRY twice
+  const auto s = run.snapshot();
+  EXPECT_GT(s.vio_link_faults.delayed, 25u);
+  EXPECT_EQ(s.hil_link_faults.delayed, 0u);  // the HIL link untouched
 }
 
 TEST(FaultsOnTheWire, HilDropHalfLosesAboutHalfTheDatagrams) {
@@ -101,7 +127,7 @@ TEST(FaultsOnTheWire, HilDropHalfLosesAboutHalfTheDatagrams) {
   EXPECT_GT(in_window, 125 - 24);
   EXPECT_LT(in_window, 125 + 24);
   const auto s = run.snapshot();
-  EXPECT_EQ(s.hil_dropped_datagrams + static_cast<uint64_t>(in_window), 250u);
+  EXPECT_EQ(s.hil_link_faults.dropped + static_cast<uint64_t>(in_window), 250u);
 }
 
 TEST(FaultsOnTheWire, TheRecordingSaysWhatWasInjectedWhen) {
