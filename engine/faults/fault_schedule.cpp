@@ -34,17 +34,37 @@ FaultSchedule::FaultSchedule(std::vector<FaultSpec> specs) {
   for (auto& s : specs) entries_.push_back({std::move(s)});
 }
 
-std::vector<FaultChange> FaultSchedule::update(double t_s) {
+bool FaultSchedule::met(const Condition& c, std::optional<double>& held_s, double t_s, const VehicleObservation& seen) const {
+  if (!held_s) {
+    bool holds = true;
+    if (c.altitude_above_m) holds = holds && seen.altitude_m > *c.altitude_above_m;
+    if (c.altitude_below_m) holds = holds && seen.altitude_m < *c.altitude_below_m;
+    if (c.armed) holds = holds && seen.armed == *c.armed;
+    if (c.mode) holds = holds && seen.mode == *c.mode;
+    if (c.after) {
+      bool started = false;
+      for (const auto& other : entries_)
+        if (other.spec.id == *c.after && other.state != State::Pending) started = true;
+      holds = holds && started;
+    }
+    if (holds) held_s = t_s;
+  }
+  return held_s && t_s + kTimeEpsilon_s >= *held_s + c.delay_s;
+}
+
+std::vector<FaultChange> FaultSchedule::update(double t_s, const VehicleObservation& seen) {
   std::vector<FaultChange> changes;
   for (auto& e : entries_) {
-    if (e.state == State::Pending && t_s + kTimeEpsilon_s >= e.spec.start_s) {
+    if (e.state == State::Pending && t_s + kTimeEpsilon_s >= e.spec.start_s &&
+        (!e.spec.start_when || met(*e.spec.start_when, e.start_held_s, t_s, seen))) {
       e.state = State::Active;
       e.started_s = t_s;
       e.record = records_.size();
       records_.push_back({e.spec.name(), e.spec.args, t_s, std::nullopt});
       changes.push_back({true, e.spec, t_s});
     }
-    if (e.state == State::Active && e.spec.duration_s && t_s + kTimeEpsilon_s >= e.spec.start_s + *e.spec.duration_s) {
+    const bool duration_over = e.spec.duration_s && t_s + kTimeEpsilon_s >= e.started_s + *e.spec.duration_s;
+    if (e.state == State::Active && (duration_over || (e.spec.end_when && met(*e.spec.end_when, e.end_held_s, t_s, seen)))) {
       e.state = State::Done;
       records_[e.record].end_s = t_s;
       changes.push_back({false, e.spec, t_s});

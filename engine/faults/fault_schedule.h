@@ -100,12 +100,19 @@ struct FaultChange {
   std::string text() const;
 };
 
+/// What the conditions of scenario events look at, each step.
+struct VehicleObservation {
+  double altitude_m = 0;  ///< above home, truth
+  bool armed = false;
+  std::string mode;       ///< the board's PX4 mode name ("" before its first HEARTBEAT)
+};
+
 class FaultSchedule {
  public:
   explicit FaultSchedule(std::vector<FaultSpec> specs = {});
   /// Starts and ends what is due at simulated time `t_s` (called every step, t increasing) and
-  /// refolds active(); the changes in the order they happened.
-  std::vector<FaultChange> update(double t_s);
+  /// refolds active(); the changes in the order they happened. `seen` feeds the conditions.
+  std::vector<FaultChange> update(double t_s, const VehicleObservation& seen = {});
   const ActiveFaults& active() const { return active_; }
   const std::vector<FaultRecord>& records() const { return records_; }
   /// "gps-loss", "motor:2,0.6" for each active fault.
@@ -119,7 +126,11 @@ class FaultSchedule {
     State state = State::Pending;
     double started_s = 0;
     std::size_t record = 0;
+    std::optional<double> start_held_s;  ///< when start_when first held (it latches)
+    std::optional<double> end_held_s;
   };
+  /// True once `c` has held (latched) for its delay at `t_s`.
+  bool met(const Condition& c, std::optional<double>& held_s, double t_s, const VehicleObservation& seen) const;
   void fold(double t_s);
 
   std::vector<Entry> entries_;

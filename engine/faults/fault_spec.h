@@ -76,11 +76,25 @@ std::vector<std::string> fault_names();
 /// "motor:I,K" (what --help and errors show).
 std::string usage(const FaultInfo& info);
 
+/// A scenario event's condition (docs/faults.md "Conditions"): every part given must hold; it
+/// counts from the first step where they all do (it latches), and is met `delay_s` later.
+struct Condition {
+  std::optional<double> altitude_above_m;  ///< the vehicle's altitude above home (truth)
+  std::optional<double> altitude_below_m;
+  std::optional<bool> armed;               ///< the board's armed bit (HIL_ACTUATOR_CONTROLS)
+  std::optional<std::string> mode;         ///< the board's PX4 mode ("Position", "Land", ...)
+  std::optional<std::string> after;        ///< another event's id: once it started
+  double delay_s = 0;
+};
+
 struct FaultSpec {
   FaultKind kind = FaultKind::GpsLoss;
   std::vector<double> args;  ///< in the catalogue's order and units
-  double start_s = 0;        ///< simulated time
-  std::optional<double> duration_s;  ///< none: until the session ends
+  double start_s = 0;        ///< simulated time (with start_when: the earliest)
+  std::optional<double> duration_s;  ///< none: until the session ends (or end_when)
+  std::string id;                    ///< a scenario event's name for "after" ("" none)
+  std::optional<Condition> start_when;
+  std::optional<Condition> end_when;
 
   std::string name() const { return info(kind).name; }
   /// "2,0.6" ("" without arguments).

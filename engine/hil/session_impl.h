@@ -52,6 +52,7 @@ struct Session::Impl {
   double time_offset_s = 0;   ///< simulated time before the last reset: the wire's clock never goes back
   uint64_t resets = 0;
 
+  std::string board_mode;      ///< the board's PX4 mode from its HEARTBEAT (scenario conditions)
   double rest_altitude_m = 0;  ///< the body origin's height at rest at home: altitude 0, as PX4's local position
   double next_heartbeat_s = 0;
   double start_wall_s = 0;

@@ -14,6 +14,8 @@
 #include "base/mavlink/heartbeat.h"
 #include "base/mavlink/wire_units.h"
 #include "engine/telemetry/health.h"
+#include "engine/telemetry/px4_mode.h"
+#include "base/mavlink/messages.h"
 
 namespace hitl::hil {
 
@@ -55,7 +57,8 @@ Status Session::Impl::step(EventSink& events) {
 
 void Session::Impl::apply_faults(EventSink& events) {
   if (fault_schedule.empty()) return;
-  for (auto& change : fault_schedule.update(sim_time_s())) {
+  const faults::VehicleObservation seen{model->state().p_ENU_m.z() - rest_altitude_m, stack->actuators().armed(), board_mode};
+  for (auto& change : fault_schedule.update(sim_time_s(), seen)) {
     SessionEvent e{Severity::Info, change.text(), std::nullopt};
     services->announce(e.severity, e.text);
     e.fault = std::move(change);
@@ -88,6 +91,10 @@ void Session::Impl::wait_next_tick(const std::atomic<bool>& stop) {
 void Session::Impl::drain(double now_s) {
   stack->drain(now_s, [&](const mavlink::Frame& f, double t_s) {
     paths->on_stack_frame(f, t_s);
+    if (f.is<mavlink::msg::Heartbeat>()) {  // the board's mode, for the scenario's conditions
+      const auto hb = f.as<mavlink::msg::Heartbeat>();
+      if (hb.autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid)) board_mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
+    }
     if (pilot) pilot->on_board_frame(f);
     services->route_from_stack(f, t_s);
   });

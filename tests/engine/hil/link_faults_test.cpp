@@ -96,7 +96,9 @@ TEST(LinkFaults, JitterStaysWithinItsBoundAndKeepsTheOrder) {
     const double added_s = left[i].due_s - left[i].seq * kStep_s;
     min_s = std::min(min_s, added_s);
     max_s = std::max(max_s, added_s);
-    if (i > 0) EXPECT_GE(left[i].due_s, left[i - 1].due_s);
+    if (i > 0) {
+      EXPECT_GE(left[i].due_s, left[i - 1].due_s);
+    }
   }
   EXPECT_GE(min_s, 0.010 - 1e-12);
   EXPECT_LE(max_s, 0.030 + 1e-12);
