@@ -161,6 +161,24 @@ void FaultSchedule::fold(double t_s) {
   active_ = a;
 }
 
+void FaultSchedule::start_now(FaultSpec spec) {
+  spec.start_s = 0;  // due at once
+  spec.start_when.reset();
+  entries_.push_back({std::move(spec)});
+}
+
+std::vector<FaultChange> FaultSchedule::clear(const std::string& name, double t_s) {
+  std::vector<FaultChange> changes;
+  for (auto& e : entries_) {
+    if (e.state != State::Active || (!name.empty() && e.spec.name() != name)) continue;
+    e.state = State::Done;
+    records_[e.record].end_s = t_s;
+    changes.push_back({false, e.spec, t_s});
+  }
+  fold(t_s);
+  return changes;
+}
+
 std::vector<std::string> FaultSchedule::active_texts() const {
   std::vector<std::string> out;
   for (const auto& e : entries_)

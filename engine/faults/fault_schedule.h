@@ -113,6 +113,10 @@ class FaultSchedule {
   /// Starts and ends what is due at simulated time `t_s` (called every step, t increasing) and
   /// refolds active(); the changes in the order they happened. `seen` feeds the conditions.
   std::vector<FaultChange> update(double t_s, const VehicleObservation& seen = {});
+  /// A fault started by hand (the dashboard): from the next update() on, its start_s ignored.
+  void start_now(FaultSpec spec);
+  /// Ends every active fault named `name` (every active one when empty) at `t_s`; what ended.
+  std::vector<FaultChange> clear(const std::string& name, double t_s);
   const ActiveFaults& active() const { return active_; }
   const std::vector<FaultRecord>& records() const { return records_; }
   /// "gps-loss", "motor:2,0.6" for each active fault.

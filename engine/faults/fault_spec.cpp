@@ -262,3 +262,27 @@ Expected<FaultSpec> parse_fault(const std::string& text, const Suggest& suggest)
 }
 
 }  // namespace hitl::faults
+
+namespace hitl::faults {
+
+Expected<FaultSpec> parse_live_fault(const std::string& text, const Suggest& suggest) {
+  if (text.find('@') != std::string::npos)
+    return Error{"'" + text + "': a fault started by hand starts now: NAME[:ARGS][+DUR], no '@T'"};
+  // The duration: after the last '+' that is no exponent's sign.
+  std::string head = text, tail;
+  for (auto plus = text.rfind('+'); plus != std::string::npos && plus > 0; plus = text.rfind('+', plus - 1)) {
+    if (text[plus - 1] == 'e' || text[plus - 1] == 'E') continue;
+    head = text.substr(0, plus);
+    tail = text.substr(plus);
+    break;
+  }
+  auto spec = parse_fault(head + "@0" + tail, suggest);
+  if (!spec) {
+    std::string message = spec.error().message;
+    if (const auto at = message.find("@0"); at != std::string::npos) message.erase(at, 2);  // name what was typed
+    return Error{message};
+  }
+  return spec;
+}
+
+}  // namespace hitl::faults

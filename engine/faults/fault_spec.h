@@ -112,6 +112,8 @@ Expected<FaultSpec> make_fault(const std::string& name, const std::vector<double
                                std::optional<double> duration_s, const Suggest& suggest = {});
 /// Parses "NAME[:ARGS][@T[+DUR]]": `gps-loss@20+10`, `motor:2,0.6@15`, `hil-delay:20`.
 Expected<FaultSpec> parse_fault(const std::string& text, const Suggest& suggest = {});
+/// A fault started by hand now: "NAME[:ARGS][+DUR]" (`gps-loss+10`, `motor:2,0.6`); no '@T'.
+Expected<FaultSpec> parse_live_fault(const std::string& text, const Suggest& suggest = {});
 /// A number as a fault argument or time: finite, the whole text.
 Expected<double> parse_number(const std::string& text, const std::string& what);
 

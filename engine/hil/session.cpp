@@ -150,6 +150,16 @@ void Session::set_paused(bool paused) { impl_->pause_wanted.store(paused); }
 
 void Session::request_reset() { impl_->reset_wanted.store(true); }
 
+void Session::start_fault(faults::FaultSpec spec) {
+  std::lock_guard<std::mutex> lock(impl_->fault_requests_mutex);
+  if (impl_->fault_requests.size() < Impl::kMaxFaultRequests) impl_->fault_requests.push_back({std::move(spec), {}});
+}
+
+void Session::clear_faults(std::string name) {
+  std::lock_guard<std::mutex> lock(impl_->fault_requests_mutex);
+  if (impl_->fault_requests.size() < Impl::kMaxFaultRequests) impl_->fault_requests.push_back({std::nullopt, std::move(name)});
+}
+
 SessionSnapshot Session::snapshot() const {
   std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);
   return impl_->published;

@@ -48,6 +48,13 @@ struct Session::Impl {
   // Operator controls (the dashboard): requests from other threads, taken at the next step.
   std::atomic<bool> pause_wanted{false};
   std::atomic<bool> reset_wanted{false};
+  struct FaultRequest {
+    std::optional<faults::FaultSpec> start;  ///< none: clear
+    std::string clear_name;                  ///< "" with no start: every active fault
+  };
+  static constexpr std::size_t kMaxFaultRequests = 64;  ///< between two steps; more are ignored
+  std::mutex fault_requests_mutex;
+  std::vector<FaultRequest> fault_requests;
   bool resumed = false;       ///< the first step after a pause: no answer is owed for it
   double time_offset_s = 0;   ///< simulated time before the last reset: the wire's clock never goes back
   uint64_t resets = 0;

@@ -56,9 +56,21 @@ Status Session::Impl::step(EventSink& events) {
 }
 
 void Session::Impl::apply_faults(EventSink& events) {
+  std::vector<FaultRequest> requests;
+  {
+    std::lock_guard<std::mutex> lock(fault_requests_mutex);
+    requests.swap(fault_requests);
+  }
+  std::vector<faults::FaultChange> cleared;
+  for (auto& r : requests) {
+    if (r.start) fault_schedule.start_now(std::move(*r.start));
+    else for (auto& c : fault_schedule.clear(r.clear_name, sim_time_s())) cleared.push_back(std::move(c));
+  }
   if (fault_schedule.empty()) return;
   const faults::VehicleObservation seen{model->state().p_ENU_m.z() - rest_altitude_m, stack->actuators().armed(), board_mode};
-  for (auto& change : fault_schedule.update(sim_time_s(), seen)) {
+  auto changes = fault_schedule.update(sim_time_s(), seen);
+  changes.insert(changes.begin(), cleared.begin(), cleared.end());
+  for (auto& change : changes) {
     SessionEvent e{Severity::Info, change.text(), std::nullopt};
     services->announce(e.severity, e.text);
     e.fault = std::move(change);

@@ -165,5 +165,38 @@ TEST(Scenario, RefusesBadConditionsNamingTheEvent) {
             std::string::npos);
 }
 
+TEST(FaultSchedule, FaultsStartedAndClearedByHand) {
+  auto live = parse_live_fault("motor:2,0.5");
+  ASSERT_TRUE(live) << live.error().message;
+  auto timed = parse_live_fault("gps-loss+2.5");
+  ASSERT_TRUE(timed) << timed.error().message;
+  EXPECT_DOUBLE_EQ(*timed->duration_s, 2.5);
+  EXPECT_TRUE(parse_live_fault("imu-bias:1e+0,0,0"));  // an exponent's sign is no duration
+  const auto at = parse_live_fault("gps-loss@3");
+  ASSERT_FALSE(at);
+  EXPECT_NE(at.error().message.find("starts now"), std::string::npos);
+  const auto bad = parse_live_fault("motor:7,0.5");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message.find("@0"), std::string::npos) << bad.error().message;
+
+  FaultSchedule schedule;
+  schedule.update(10.0);
+  schedule.start_now(*live);
+  schedule.start_now(*timed);
+  auto c = schedule.update(10.004);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_NEAR(schedule.records()[0].start_s, 10.004, 1e-9);
+  EXPECT_DOUBLE_EQ(schedule.active().motor_effectiveness[2], 0.5);
+  c = schedule.clear("motor", 11.0);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_FALSE(c[0].started);
+  EXPECT_DOUBLE_EQ(schedule.active().motor_effectiveness[2], 1.0);
+  EXPECT_TRUE(schedule.active().gps_loss);
+  c = schedule.update(12.504);  // 2.5 s from its start
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_FALSE(schedule.active().gps_loss);
+  EXPECT_TRUE(schedule.clear("", 13).empty());  // nothing left to clear
+}
+
 }  // namespace
 }  // namespace hitl::faults
