@@ -319,7 +319,7 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
 
   sub->add_flag("--tui", opt->tui,
                 "The live dashboard (docs/tui.md): data paths, dsp_hitl, EKF, vehicle, messages, link; keys a arm, d disarm, "
-                "t takeoff, l land, p pause, r reset, f fly the -t file (waits for the key), s shell, ? help, q quit. "
+                "t takeoff, l land, p pause, r reset, f fly the -t file (waits for the key), s shell, x start or clear a fault (docs/faults.md), ? help, q quit. "
                 "Without a terminal: the status lines")
       ->group("Dashboard");
 

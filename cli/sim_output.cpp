@@ -97,7 +97,12 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
                        {"rms_m", s.trajectory_rms_m},
                        {"max_m", s.trajectory_max_m}};
   j["active_faults"] = s.active_faults;
-  j["hil_link_faults"] = {{"dropped_datagrams", s.hil_dropped_datagrams}, {"delayed_datagrams", s.hil_delayed_datagrams}};
+  auto link_json = [](const hil::LinkFaultCounts& c) {
+    return nlohmann::json{{"dropped_datagrams", c.dropped}, {"delayed_datagrams", c.delayed},
+                          {"reordered_datagrams", c.reordered}, {"duplicated_datagrams", c.duplicated}};
+  };
+  j["hil_link_faults"] = link_json(s.hil_link_faults);
+  j["vio_link_faults"] = link_json(s.vio_link_faults);
   j["loop_latency"] = loop_latency_json(s.loop_latency, final_summary);
   if (final_summary) {
     j["faults"] = fault_records_json(s.faults);
@@ -171,9 +176,11 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
     if (r.end_s) std::printf("fault %s%s: %.3f s to %.3f s\n", r.name.c_str(), args.c_str(), r.start_s, *r.end_s);
     else std::printf("fault %s%s: from %.3f s to the end\n", r.name.c_str(), args.c_str(), r.start_s);
   }
-  if (s.hil_dropped_datagrams + s.hil_delayed_datagrams > 0)
-    std::printf("HIL link faults: %llu datagrams dropped, %llu delayed\n", static_cast<unsigned long long>(s.hil_dropped_datagrams),
-                static_cast<unsigned long long>(s.hil_delayed_datagrams));
+  for (const auto& [name, c] : {std::pair{"HIL", s.hil_link_faults}, std::pair{"VIO", s.vio_link_faults}})
+    if (c.dropped + c.delayed + c.reordered + c.duplicated > 0)
+      std::printf("%s link faults: %llu datagrams dropped, %llu delayed, %llu reordered, %llu duplicated\n", name,
+                  static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.delayed),
+                  static_cast<unsigned long long>(c.reordered), static_cast<unsigned long long>(c.duplicated));
   if (const auto& l = s.loop_latency.latency; l.count > 0)
     std::printf("loop latency (HIL_SENSOR -> %s HIL_ACTUATOR_CONTROLS, %llu answered): p50 %.2f ms  p95 %.2f ms  p99 %.2f ms"
                 "  max %.2f ms\n",

@@ -18,6 +18,7 @@ enum class Action {
   FlyTrajectory,
   StopTrajectory,  ///< confirmed by the operator
   Shell,           ///< with the command line as argument
+  Fault,           ///< with the typed fault as argument: "gps-loss+10" starts one now, "clear [NAME]" ends
 };
 
 /// "arm", "force disarm", "pause/resume", ...

@@ -102,7 +102,8 @@ std::optional<std::string> BridgeDashboard::refusal(Action action) const {
     case Action::ResetHome:
     case Action::FlyTrajectory:
     case Action::StopTrajectory:
-      return "hitl bridge runs no simulator (pause, reset and trajectories belong to hitl sim --tui)";
+    case Action::Fault:
+      return "hitl bridge runs no simulator (pause, reset, trajectories and faults belong to hitl sim --tui)";
     default: return board_.refusal(action);
   }
 }

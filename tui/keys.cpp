@@ -16,6 +16,7 @@ const char* to_string(Action action) {
     case Action::FlyTrajectory: return "fly trajectory";
     case Action::StopTrajectory: return "stop trajectory";
     case Action::Shell: return "shell";
+    case Action::Fault: return "fault";
   }
   return "?";
 }
@@ -112,7 +113,7 @@ Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& mode
           enter(Interaction::Mode::Normal);
           const auto first = line.find_first_not_of(' ');
           if (first == std::string::npos) return {};
-          return start(Action::Shell, line.substr(first), actions);
+          return start(prompt_action_, line.substr(first), actions);
         }
         case Key::Kind::Backspace:
           if (!interaction_.input.empty()) interaction_.input.pop_back();
@@ -140,7 +141,13 @@ Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& mode
     case 'f': return request(Action::FlyTrajectory, model, actions);
     case 's':
       if (actions == nullptr || actions->refusal(Action::Shell)) return start(Action::Shell, "", actions);
+      prompt_action_ = Action::Shell;
       enter(Interaction::Mode::Prompt, "", "shell (Enter runs, Esc cancels)> ");
+      return {};
+    case 'x':
+      if (actions == nullptr || actions->refusal(Action::Fault)) return start(Action::Fault, "", actions);
+      prompt_action_ = Action::Fault;
+      enter(Interaction::Mode::Prompt, "", "fault: NAME[:ARGS][+DUR] starts now, clear [NAME] ends (docs/faults.md)> ");
       return {};
     default: return {};
   }

@@ -46,6 +46,7 @@ class Dispatcher {
 
   Interaction interaction_;
   std::optional<Action> pending_;  ///< what y confirms
+  Action prompt_action_ = Action::Shell;  ///< what Enter in the prompt runs
   int message_rows_ = 0, message_page_ = 0;
 };
 

@@ -22,7 +22,8 @@ constexpr KeyHelp kActionKeys[] = {
     {'a', "arm", "arm"},       {'d', "disarm", "disarm (asks first in the air)"},
     {'t', "takeoff", "take off"}, {'l', "land", "land"},
     {'p', "pause", "pause / resume"}, {'r', "reset", "reset to home (asks when armed)"},
-    {'f', "fly", "fly the -t trajectory"}, {'s', "shell", "one shell command"}};
+    {'f', "fly", "fly the -t trajectory"}, {'s', "shell", "one shell command"},
+    {'x', "fault", "start a fault now or clear one"}};
 
 /// The footer: the keys that work on this dashboard, the scroll keys while they fit, help, quit.
 std::string key_hints(const std::string& keys, int width) {

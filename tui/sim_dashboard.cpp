@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "base/contract/data_rates.h"
+#include "engine/faults/fault_spec.h"
 #include "engine/vehicle/patient_link.h"
 #include "tui/collect.h"
 #include "tui/draw.h"
@@ -49,7 +50,8 @@ std::optional<std::string> SimDashboard::finished() {
 std::optional<std::string> SimDashboard::refusal(Action action) const {
   switch (action) {
     case Action::TogglePause:
-    case Action::ResetHome: return std::nullopt;
+    case Action::ResetHome:
+    case Action::Fault: return std::nullopt;
     case Action::StopTrajectory:
       if (!trajectory_.running()) return "no trajectory is being flown";
       return std::nullopt;
@@ -71,6 +73,17 @@ void SimDashboard::perform(Action action, const std::string& argument) {
   switch (action) {
     case Action::TogglePause: session_.set_paused(!session_.snapshot().paused); return;
     case Action::ResetHome: session_.request_reset(); return;
+    case Action::Fault: {
+      if (argument.rfind("clear", 0) == 0) {
+        const auto name = argument.find_first_not_of(' ', 5);
+        session_.clear_faults(name == std::string::npos ? "" : argument.substr(name));
+        return;
+      }
+      auto spec = faults::parse_live_fault(argument);
+      if (!spec) log_.add(Severity::Warning, "fault: " + spec.error().message);
+      else session_.start_fault(*spec);
+      return;
+    }
     case Action::StopTrajectory:
       log_.add_outcome(Severity::Notice, "stopping the trajectory");
       trajectory_.stop();
@@ -135,7 +148,7 @@ DashboardModel SimDashboard::collect() {
   const hil::SessionSnapshot s = session_.snapshot();
   DashboardModel m;
   m.title = dashboard_.title;
-  m.keys = config_.clients_port == 0 ? "pr" : "adtlprfs";  // --clients 0: nothing reaches the board
+  m.keys = config_.clients_port == 0 ? "prx" : "adtlprfsx";  // --clients 0: nothing reaches the board (faults still do)
   const double pace = s.speed > 0 ? s.speed : (s.recent_real_time_factor > 0 ? s.recent_real_time_factor : 1.0);
   if (s.paused) {
     m.state = "PAUSED";

@@ -16,7 +16,21 @@ constexpr double kMaxMagOffset_gauss = 10;
 constexpr double kMaxBaroDrift_Pa_per_s = 10000;
 constexpr double kMaxMotorScale = 2;
 constexpr double kMaxHilDelay_ms = 5000;
-constexpr double kMaxTime_s = 86400;         ///< a day of simulated time
+constexpr double kMaxTime_s = 86400;
+constexpr double kMaxNoiseScale = 100;
+constexpr double kMaxClipAccel_m_s2 = 2000;  ///< above any MEMS full scale (+-200 g)
+constexpr double kMaxClipGyro_rad_s = 70;    ///< +-4000 deg/s
+constexpr double kMaxVibration_m_s2 = 500;
+constexpr double kMaxVibration_Hz = 5000;
+constexpr double kMaxMagScale = 10;
+constexpr double kMaxBaroOffset_Pa = 20000;
+constexpr double kMaxGpsDrift_m_s = 100;
+constexpr double kMaxPayload_kg = 20;
+constexpr double kMaxWind_m_s = 50;
+constexpr double kMaxTurbulenceSigma_m_s = 20;
+constexpr double kMaxVioDrift_m_s = 10;
+constexpr double kMaxVioJump_m = 1000;
+constexpr double kMaxLinkRate_Hz = 10000;         ///< a day of simulated time
 
 std::string compact(double v) {
   char buf[32];
@@ -55,6 +69,60 @@ const std::vector<FaultInfo>& fault_catalogue() {
        "each datagram to the flight stack (a step's HIL_SENSOR, HIL_GPS, ...) is dropped with probability p (--seed)"},
       {FaultKind::HilDelay, "hil-delay", {{"ms", 0, kMaxHilDelay_ms}}, 1,
        "each datagram to the flight stack leaves this much later (queued; the 250 Hz loop does not wait)"},
+      {FaultKind::ImuNoise, "imu-noise", {{"k", 0, kMaxNoiseScale}}, 1,
+       "the IMU's error against truth (white noise and bias walk, accel and gyro) x k; 0: a perfect IMU"},
+      {FaultKind::ImuStuck, "imu-stuck", {}, 0, "the IMU repeats the accel and gyro it read last before the fault (a hung sensor)"},
+      {FaultKind::ImuClip, "imu-clip", {{"accel_m_s2", 0.1, kMaxClipAccel_m_s2}, {"gyro_rad_s", 0.01, kMaxClipGyro_rad_s}}, 2,
+       "the IMU clips each axis at +-accel_m_s2 and +-gyro_rad_s (a smaller full scale, saturation)"},
+      {FaultKind::ImuVibration, "imu-vibration", {{"amp_m_s2", 0, kMaxVibration_m_s2}, {"freq_hz", 0, kMaxVibration_Hz}}, 2,
+       "a sinusoidal acceleration of this amplitude and frequency at the IMU, body x and y (sampled at the IMU's rate: it aliases)"},
+      {FaultKind::MagStuck, "mag-stuck", {}, 0, "the magnetometer repeats the field it read last before the fault"},
+      {FaultKind::MagScale, "mag-scale", {{"k", 0, kMaxMagScale}}, 1,
+       "the magnetometer's reading x k (a gain error, soft iron); before mag-offset"},
+      {FaultKind::BaroOffset, "baro-offset", {{"pa", -kMaxBaroOffset_Pa, kMaxBaroOffset_Pa}}, 1,
+       "the static pressure + pa (a pressure step: a door, a prop wash; pressure_alt follows)"},
+      {FaultKind::BaroStuck, "baro-stuck", {}, 0, "the barometer repeats the pressure, altitude and temperature it read last"},
+      {FaultKind::GpsDrift, "gps-drift", {{"north_m_s", -kMaxGpsDrift_m_s, kMaxGpsDrift_m_s}, {"east_m_s", -kMaxGpsDrift_m_s, kMaxGpsDrift_m_s}}, 2,
+       "the reported position walks away at this rate from the fault's start, the velocity includes it (a slow, consistent spoof)"},
+      {FaultKind::GpsNoise, "gps-noise", {{"k", 0, kMaxNoiseScale}}, 1,
+       "the GPS's position error (wander and white noise) and velocity noise x k"},
+      {FaultKind::PropDamage, "prop-damage", {{"i", 0, 3, true}, {"k", 0, kMaxMotorScale}, {"vib_m_s2", 0, kMaxVibration_m_s2}}, 3,
+       "motor i's thrust and torques x k (a chipped blade) and an imbalance: vib_m_s2 at the IMU once per revolution of rotor i"},
+      {FaultKind::Payload, "payload", {{"kg", 0, kMaxPayload_kg}}, 1,
+       "this mass hangs at the base origin (its weight pulls down; the inertia is the vehicle's own)"},
+      {FaultKind::Wind, "wind", {{"north_m_s", -kMaxWind_m_s, kMaxWind_m_s}, {"east_m_s", -kMaxWind_m_s, kMaxWind_m_s},
+                                 {"down_m_s", -kMaxWind_m_s, kMaxWind_m_s}}, 2,
+       "the air moves at this velocity (NED, blowing towards), added to the world's wind"},
+      {FaultKind::Gust, "gust", {{"north_m_s", -kMaxWind_m_s, kMaxWind_m_s}, {"east_m_s", -kMaxWind_m_s, kMaxWind_m_s},
+                                 {"down_m_s", -kMaxWind_m_s, kMaxWind_m_s}}, 2,
+       "a 1-cosine gust: the added wind rises from 0 to this peak at half the duration and back to 0 at its end", true},
+      {FaultKind::Turbulence, "turbulence", {{"sigma_m_s", 0, kMaxTurbulenceSigma_m_s}, {"tau_s", 0.05, 100}}, 1,
+       "added turbulence: each axis a Gauss-Markov process of this sigma and correlation time (default 2 s), seeded"},
+      {FaultKind::ActuatorsStale, "actuators-stale", {}, 0,
+       "the board's actuator stream goes stale: the model holds the last commands it had, whatever the board sends"},
+      {FaultKind::VioDrift, "vio-drift", {{"north_m_s", -kMaxVioDrift_m_s, kMaxVioDrift_m_s}, {"east_m_s", -kMaxVioDrift_m_s, kMaxVioDrift_m_s},
+                                          {"down_m_s", -kMaxVioDrift_m_s, kMaxVioDrift_m_s}}, 3,
+       "the ODOMETRY position walks away at this rate (NED) from the fault's start (VIO drift); velocity unchanged"},
+      {FaultKind::VioJump, "vio-jump", {{"north_m", -kMaxVioJump_m, kMaxVioJump_m}, {"east_m", -kMaxVioJump_m, kMaxVioJump_m},
+                                        {"down_m", -kMaxVioJump_m, kMaxVioJump_m}}, 3,
+       "the ODOMETRY position jumps by this offset (NED) and reset_counter goes up by one, at the start and again at the end"},
+      {FaultKind::VioQuality, "vio-quality", {{"percent", -1, 100, true}}, 1,
+       "ODOMETRY's quality reports this (-1: failed, 0: unknown, 1 worst .. 100 best)"},
+      {FaultKind::HilBurst, "hil-burst", {{"p_bad", 0, 1}, {"p_good", 0.001, 1}}, 2,
+       "burst loss on the HIL link (Gilbert-Elliott): each datagram the link turns bad with p_bad, back with p_good; all lost while bad"},
+      {FaultKind::HilJitter, "hil-jitter", {{"ms", 0, kMaxHilDelay_ms}}, 1,
+       "each datagram to the flight stack leaves up to ms later (uniform, seeded); order is kept"},
+      {FaultKind::HilReorder, "hil-reorder", {{"p", 0, 1}}, 1, "each datagram to the flight stack swaps places with the next with probability p"},
+      {FaultKind::HilDuplicate, "hil-dup", {{"p", 0, 1}}, 1, "each datagram to the flight stack is sent twice with probability p"},
+      {FaultKind::HilRate, "hil-rate", {{"hz", 0.1, kMaxLinkRate_Hz}}, 1,
+       "the HIL link carries at most hz datagrams a second (a token bucket; the rest are dropped)"},
+      {FaultKind::VioDrop, "vio-drop", {{"p", 0, 1}}, 1, "each ODOMETRY to the VIO server is dropped with probability p"},
+      {FaultKind::VioDelay, "vio-delay", {{"ms", 0, kMaxHilDelay_ms}}, 1, "each ODOMETRY leaves this much later (queued; order kept)"},
+      {FaultKind::VioBurst, "vio-burst", {{"p_bad", 0, 1}, {"p_good", 0.001, 1}}, 2, "burst loss on the VIO link (Gilbert-Elliott, as hil-burst)"},
+      {FaultKind::VioJitter, "vio-jitter", {{"ms", 0, kMaxHilDelay_ms}}, 1, "each ODOMETRY leaves up to ms later (uniform, seeded); order is kept"},
+      {FaultKind::VioReorder, "vio-reorder", {{"p", 0, 1}}, 1, "each ODOMETRY swaps places with the next with probability p"},
+      {FaultKind::VioDuplicate, "vio-dup", {{"p", 0, 1}}, 1, "each ODOMETRY is sent twice with probability p"},
+      {FaultKind::VioRate, "vio-rate", {{"hz", 0.1, kMaxLinkRate_Hz}}, 1, "the VIO link carries at most hz ODOMETRY a second (the rest dropped)"},
   };
   return catalogue;
 }
@@ -140,6 +208,8 @@ Expected<FaultSpec> make_fault(const std::string& name, const std::vector<double
   if (duration_s && (!std::isfinite(*duration_s) || !(*duration_s > 0) || *duration_s > kMaxTime_s))
     return Error{where + ": the duration must be more than 0 and at most " + compact(kMaxTime_s) + " s (got " +
                  compact(*duration_s) + ")"};
+  if (f->needs_duration && !duration_s)
+    return Error{where + ": needs a duration (" + std::string(f->name) + "@T+DUR; its shape spans it)"};
   FaultSpec spec;
   spec.kind = f->kind;
   spec.args = args;
@@ -188,6 +258,30 @@ Expected<FaultSpec> parse_fault(const std::string& text, const Suggest& suggest)
   }
   auto spec = make_fault(name, args, start_s, duration_s, suggest);
   if (!spec) return Error{"'" + text + "': " + spec.error().message};
+  return spec;
+}
+
+}  // namespace hitl::faults
+
+namespace hitl::faults {
+
+Expected<FaultSpec> parse_live_fault(const std::string& text, const Suggest& suggest) {
+  if (text.find('@') != std::string::npos)
+    return Error{"'" + text + "': a fault started by hand starts now: NAME[:ARGS][+DUR], no '@T'"};
+  // The duration: after the last '+' that is no exponent's sign.
+  std::string head = text, tail;
+  for (auto plus = text.rfind('+'); plus != std::string::npos && plus > 0; plus = text.rfind('+', plus - 1)) {
+    if (text[plus - 1] == 'e' || text[plus - 1] == 'E') continue;
+    head = text.substr(0, plus);
+    tail = text.substr(plus);
+    break;
+  }
+  auto spec = parse_fault(head + "@0" + tail, suggest);
+  if (!spec) {
+    std::string message = spec.error().message;
+    if (const auto at = message.find("@0"); at != std::string::npos) message.erase(at, 2);  // name what was typed
+    return Error{message};
+  }
   return spec;
 }
 

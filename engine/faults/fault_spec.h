@@ -27,6 +27,28 @@ enum class FaultKind {
   VioLoss,     ///< no ODOMETRY to the VIO server
   HilDrop,     ///< each outgoing HIL datagram dropped with probability p (seeded)
   HilDelay,    ///< each outgoing HIL datagram held back this long
+  ImuNoise,      ///< the IMU's errors against truth (noise, bias walk) x k
+  ImuStuck,      ///< the IMU repeats its last reading
+  ImuClip,       ///< the IMU clips at a smaller full scale, m/s^2 and rad/s
+  ImuVibration,  ///< a sinusoidal acceleration at the IMU, m/s^2 at Hz
+  MagStuck,      ///< the magnetometer repeats its last reading
+  MagScale,      ///< the magnetometer's reading x k
+  BaroOffset,    ///< the static pressure offset, Pa
+  BaroStuck,     ///< the barometer repeats its last reading
+  GpsDrift,      ///< the GPS position walks away at a rate, m/s north and east (slow spoofing)
+  GpsNoise,      ///< the GPS's position and velocity errors x k
+  PropDamage,      ///< motor i's thrust and torques x k plus a once-per-revolution vibration at the IMU
+  Payload,         ///< added mass hanging at the base origin, kg
+  Wind,            ///< added steady wind, NED m/s
+  Gust,            ///< a 1-cosine gust of this peak over the fault's duration, NED m/s
+  Turbulence,      ///< added Gauss-Markov turbulence, sigma m/s and correlation time s
+  ActuatorsStale,  ///< the board's actuator stream stale: the model holds the last commands
+  VioDrift,        ///< the VIO position walks away at a rate, NED m/s
+  VioJump,         ///< the VIO position jumps (reset_counter incremented at start and end), NED m
+  VioQuality,      ///< ODOMETRY's quality field reports this percentage
+  // the links' faults beyond drop and delay; each on the HIL link (to the flight stack) and the VIO link
+  HilBurst, HilJitter, HilReorder, HilDuplicate, HilRate,
+  VioDrop, VioDelay, VioBurst, VioJitter, VioReorder, VioDuplicate, VioRate,
 };
 
 struct FaultArg {
@@ -42,6 +64,7 @@ struct FaultInfo {
   std::vector<FaultArg> args;
   std::size_t required_args;  ///< the rest are optional
   const char* meaning;        ///< one line: what it does where
+  bool needs_duration = false;  ///< its shape spans its duration (gust)
 };
 
 /// Every fault the simulator knows, in the order docs/faults.md lists them.
@@ -53,11 +76,25 @@ std::vector<std::string> fault_names();
 /// "motor:I,K" (what --help and errors show).
 std::string usage(const FaultInfo& info);
 
+/// A scenario event's condition (docs/faults.md "Conditions"): every part given must hold; it
+/// counts from the first step where they all do (it latches), and is met `delay_s` later.
+struct Condition {
+  std::optional<double> altitude_above_m;  ///< the vehicle's altitude above home (truth)
+  std::optional<double> altitude_below_m;
+  std::optional<bool> armed;               ///< the board's armed bit (HIL_ACTUATOR_CONTROLS)
+  std::optional<std::string> mode;         ///< the board's PX4 mode ("Position", "Land", ...)
+  std::optional<std::string> after;        ///< another event's id: once it started
+  double delay_s = 0;
+};
+
 struct FaultSpec {
   FaultKind kind = FaultKind::GpsLoss;
   std::vector<double> args;  ///< in the catalogue's order and units
-  double start_s = 0;        ///< simulated time
-  std::optional<double> duration_s;  ///< none: until the session ends
+  double start_s = 0;        ///< simulated time (with start_when: the earliest)
+  std::optional<double> duration_s;  ///< none: until the session ends (or end_when)
+  std::string id;                    ///< a scenario event's name for "after" ("" none)
+  std::optional<Condition> start_when;
+  std::optional<Condition> end_when;
 
   std::string name() const { return info(kind).name; }
   /// "2,0.6" ("" without arguments).
@@ -75,6 +112,8 @@ Expected<FaultSpec> make_fault(const std::string& name, const std::vector<double
                                std::optional<double> duration_s, const Suggest& suggest = {});
 /// Parses "NAME[:ARGS][@T[+DUR]]": `gps-loss@20+10`, `motor:2,0.6@15`, `hil-delay:20`.
 Expected<FaultSpec> parse_fault(const std::string& text, const Suggest& suggest = {});
+/// A fault started by hand now: "NAME[:ARGS][+DUR]" (`gps-loss+10`, `motor:2,0.6`); no '@T'.
+Expected<FaultSpec> parse_live_fault(const std::string& text, const Suggest& suggest = {});
 /// A number as a fault argument or time: finite, the whole text.
 Expected<double> parse_number(const std::string& text, const std::string& what);
 

@@ -1,5 +1,6 @@
 #include "engine/faults/scenario.h"
 
+#include <cmath>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -41,17 +42,69 @@ Expected<std::vector<double>> args_field(const json& v, const std::string& where
   }
 }
 
+constexpr double kMaxAltitude_m = 100000;
+constexpr double kMaxDelay_s = 86400;
+constexpr std::size_t kMaxNameLength = 64;
+
+Expected<Condition> parse_condition(const json& c, const std::string& where) {
+  if (!c.is_object())
+    return Error{where + ": must be an object {\"altitude_above_m\", \"armed\", \"mode\", \"after\", \"delay_s\"} (got " + c.dump() + ")"};
+  Condition out;
+  for (const auto& [key, value] : c.items()) {
+    const std::string at = where + "." + key;
+    if (key == "altitude_above_m" || key == "altitude_below_m" || key == "delay_s") {
+      if (!value.is_number()) return Error{at + ": must be a number (got " + value.dump() + ")"};
+      const double v = value.get<double>();
+      const double lo = key == "delay_s" ? 0 : -kMaxAltitude_m, hi = key == "delay_s" ? kMaxDelay_s : kMaxAltitude_m;
+      if (!std::isfinite(v) || v < lo || v > hi) return Error{at + ": must be within " + std::to_string(static_cast<long>(lo)) + ".." + std::to_string(static_cast<long>(hi)) + " (got " + value.dump() + ")"};
+      (key == "delay_s" ? out.delay_s : key == "altitude_above_m" ? out.altitude_above_m.emplace() : out.altitude_below_m.emplace()) = v;
+    } else if (key == "armed") {
+      if (!value.is_boolean()) return Error{at + ": must be true or false (got " + value.dump() + ")"};
+      out.armed = value.get<bool>();
+    } else if (key == "mode" || key == "after") {
+      if (!value.is_string() || value.get<std::string>().empty() || value.get<std::string>().size() > kMaxNameLength)
+        return Error{at + ": must be a name of 1.." + std::to_string(kMaxNameLength) + " characters (got " + value.dump() + ")"};
+      (key == "mode" ? out.mode : out.after) = value.get<std::string>();
+    } else {
+      return Error{where + ": unknown key '" + key + "' (a condition has altitude_above_m, altitude_below_m, armed, mode, after, delay_s)"};
+    }
+  }
+  if (!out.altitude_above_m && !out.altitude_below_m && !out.armed && !out.mode && !out.after)
+    return Error{where + ": names nothing to wait for (altitude_above_m, altitude_below_m, armed, mode or after)"};
+  return out;
+}
+
 Expected<FaultSpec> parse_event(const json& event, const std::string& where, const Suggest& suggest) {
   if (!event.is_object()) return Error{where + ": must be an object {\"at_s\", \"fault\", ...} (got " + event.dump() + ")"};
   for (const auto& [key, value] : event.items())
-    if (key != "at_s" && key != "fault" && key != "args" && key != "duration_s")
-      return Error{where + ": unknown key '" + key + "' (an event has at_s, fault, args, duration_s)"};
+    if (key != "at_s" && key != "fault" && key != "args" && key != "duration_s" && key != "id" && key != "when" && key != "end_when")
+      return Error{where + ": unknown key '" + key + "' (an event has id, at_s, when, fault, args, duration_s, end_when)"};
   if (!event.contains("fault")) return Error{where + ": no \"fault\""};
-  if (!event.contains("at_s")) return Error{where + ": no \"at_s\" (the start, simulated seconds)"};
+  if (!event.contains("at_s") && !event.contains("when"))
+    return Error{where + ": no \"at_s\" (the start, simulated seconds) and no \"when\" (a condition)"};
   if (!event.at("fault").is_string()) return Error{where + ".fault: must be a fault's name (got " + event.at("fault").dump() + ")"};
   const std::string name = event.at("fault").get<std::string>();
-  auto at = number_field(event, "at_s", where);
+  Expected<double> at = 0.0;
+  if (event.contains("at_s")) at = number_field(event, "at_s", where);
   if (!at) return at.error();
+  std::string id;
+  if (event.contains("id")) {
+    const json& v = event.at("id");
+    if (!v.is_string() || v.get<std::string>().empty() || v.get<std::string>().size() > kMaxNameLength)
+      return Error{where + ".id: must be a name of 1.." + std::to_string(kMaxNameLength) + " characters (got " + v.dump() + ")"};
+    id = v.get<std::string>();
+  }
+  std::optional<Condition> start_when, end_when;
+  if (event.contains("when")) {
+    auto c = parse_condition(event.at("when"), where + ".when");
+    if (!c) return c.error();
+    start_when = *c;
+  }
+  if (event.contains("end_when")) {
+    auto c = parse_condition(event.at("end_when"), where + ".end_when");
+    if (!c) return c.error();
+    end_when = *c;
+  }
   std::optional<double> duration_s;
   if (event.contains("duration_s")) {
     auto d = number_field(event, "duration_s", where);
@@ -66,6 +119,9 @@ Expected<FaultSpec> parse_event(const json& event, const std::string& where, con
   }
   auto spec = make_fault(name, args, *at, duration_s, suggest);
   if (!spec) return Error{where + ": " + spec.error().message};
+  spec->id = id;
+  spec->start_when = start_when;
+  spec->end_when = end_when;
   return spec;
 }
 
@@ -94,6 +150,19 @@ Expected<std::vector<FaultSpec>> parse_scenario(const std::string& text, const s
     auto spec = parse_event(events[i], where + ": events[" + std::to_string(i) + "]", suggest);
     if (!spec) return spec.error();
     specs.push_back(std::move(spec.value()));
+  }
+  // Names: each once; every "after" names an event of this file.
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j)
+      if (!specs[i].id.empty() && specs[i].id == specs[j].id)
+        return Error{where + ": events[" + std::to_string(i) + "].id: '" + specs[i].id + "' is events[" + std::to_string(j) + "]'s too"};
+    for (const auto* c : {&specs[i].start_when, &specs[i].end_when}) {
+      if (!*c || !(*c)->after) continue;
+      bool found = false;
+      for (const auto& other : specs) found = found || other.id == *(*c)->after;
+      if (!found || *(*c)->after == specs[i].id)
+        return Error{where + ": events[" + std::to_string(i) + "]: \"after\": '" + *(*c)->after + "' is no other event's id"};
+    }
   }
   return specs;
 }

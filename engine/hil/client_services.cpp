@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "base/common/clock.h"
 #include "engine/hil/sensor_messages.h"
 #include "base/mavlink/enums.h"
 #include "base/mavlink/heartbeat.h"
@@ -61,7 +62,8 @@ ClientServices::ClientServices(const SessionConfig& config, const mavlink::Messa
       recording_(recording),
       client_parser_(messages),
       own_encoder_(config.sysid, config.compid, config.protocol),
-      vio_encoder_(config.sysid, kVioComponentId, config.protocol) {}
+      vio_encoder_(config.sysid, kVioComponentId, config.protocol),
+      vio_faults_(config.seed, "vio-link") {}
 
 void ClientServices::drain(double now_s) {
   if (!clients_) return;
@@ -175,19 +177,44 @@ void ClientServices::send_truth_if_due(const sensors::GroundTruth& truth, uint64
   broadcast_own(odometry);
 }
 
-bool ClientServices::send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s, bool lost) {
+bool ClientServices::send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s,
+                                     const faults::ActiveFaults& faults) {
   if (!vio_ || sim_s + 1e-9 < next_vio_s_) return false;
   ++vio_k_;
   next_vio_s_ = static_cast<double>(vio_k_) / config_.vio_rate_hz;
-  if (lost) return false;
-  const auto odometry = make_odometry(truth, time_usec);
+  if (faults.vio_loss) return false;
+  sensors::GroundTruth seen = truth;
+  seen.p_NED_m += faults.vio_offset_NED_m;
+  auto odometry = make_odometry(seen, time_usec);
+  odometry.reset_counter = static_cast<uint8_t>(odometry.reset_counter + faults.vio_resets);  // wraps as on the wire
+  if (faults.vio_quality) odometry.quality = static_cast<int8_t>(*faults.vio_quality);
   mavlink::FrameBuffer buf;
   const std::size_t n = vio_encoder_.encode(odometry, buf);
   if (n == 0) return true;
-  recording_.record({buf.data(), n});
-  if (auto st = vio_->send({buf.data(), n}); st) traffic_.count_sent(mavlink::msg::Odometry::kId, 1);
-  else traffic_.count_failed(1, st.error().message);
+  if (vio_faults_.holding()) {  // vio-drop, vio-delay, ...: it leaves (or not) later, recorded then
+    vio_faults_.hold({buf.data(), n}, mavlink::msg::Odometry::kId);
+    vio_faults_.close_datagram(monotonic_s());
+    release_vio_delayed(monotonic_s());
+    return true;
+  }
+  send_vio_frame({buf.data(), n}, true);
   return true;
+}
+
+void ClientServices::send_vio_frame(std::span<const uint8_t> frame, bool counted) {
+  recording_.record(frame);
+  if (auto st = vio_->send(frame); st) {
+    if (counted) traffic_.count_sent(mavlink::msg::Odometry::kId, 1);
+  } else {
+    traffic_.count_failed(1, st.error().message);
+  }
+}
+
+void ClientServices::release_vio_delayed(double now_s) {
+  if (!vio_) return;
+  vio_faults_.release_due(now_s, [&](LinkFaults::Datagram& d) {
+    for (const auto& f : d.frames) send_vio_frame(f, !d.counts.empty());
+  });
 }
 
 std::vector<std::string> ClientServices::take_send_errors() { return vio_ ? vio_->take_send_errors() : std::vector<std::string>{}; }

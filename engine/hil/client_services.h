@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "base/common/expected.h"
+#include "engine/faults/fault_schedule.h"
 #include "engine/hil/recording.h"
 #include "engine/hil/session_config.h"
 #include "engine/hil/session_events.h"
@@ -64,8 +65,16 @@ class ClientServices {
   /// Truth (ODOMETRY, estimator MOCAP) to clients and the recording when due at `sim_s`.
   void send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s);
   /// ODOMETRY to the VIO server when due at `sim_s`; true when one was sent (or refused).
-  /// `lost` (vio-loss): the schedule moves on but nothing is sent.
-  bool send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s, bool lost = false);
+  /// The VIO faults (docs/faults.md): vio-loss: the schedule moves on but nothing is sent;
+  /// vio-drift/vio-jump move the position, vio-jump counts reset_counter, vio-quality sets quality.
+  bool send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s,
+                       const faults::ActiveFaults& faults = {});
+  // --- the VIO link's faults (link_faults.h) ----------------------------------------------------
+  void set_vio_link_faults(const faults::LinkImpairment& impairment) { vio_faults_.set(impairment); }
+  /// Sends the held ODOMETRY due by `now_s` (the run loop calls it between ticks).
+  void release_vio_delayed(double now_s);
+  std::optional<double> next_vio_delayed_s() const { return vio_faults_.next_due_s(); }
+  const LinkFaults& vio_link_faults() const { return vio_faults_; }
   /// The VIO link's first refused send to each destination, once.
   std::vector<std::string> take_send_errors();
 
@@ -85,6 +94,8 @@ class ClientServices {
   template <class M>
   void broadcast_own(const M& message);
   void send_doctor_status(uint32_t boot_ms, const SessionStatus& status);
+  /// One ODOMETRY frame onto the VIO link (recorded as it leaves, counted).
+  void send_vio_frame(std::span<const uint8_t> frame, bool counted);
 
   const SessionConfig& config_;
   StackLink& stack_;
@@ -98,6 +109,7 @@ class ClientServices {
   mavlink::FrameEncoder own_encoder_;  ///< the session's status and truth to clients
   std::unique_ptr<net::Link> vio_;
   mavlink::FrameEncoder vio_encoder_;  ///< the VIO link's own sequence
+  LinkFaults vio_faults_;
   double next_status_wall_s_ = 0;
   double next_vio_s_ = 0;
   uint64_t vio_k_ = 0;

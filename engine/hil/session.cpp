@@ -64,6 +64,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   s.paths.emplace(config);
   s.loop_latency.emplace(s.stack->lockstep());
   s.fault_schedule = faults::FaultSchedule(config.faults);
+  s.sensor_faults.emplace(config.world.atmosphere);
   return std::unique_ptr<Session>(new Session(std::move(impl)));
 }
 
@@ -156,6 +157,16 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
 void Session::set_paused(bool paused) { impl_->pause_wanted.store(paused); }
 
 void Session::request_reset() { impl_->reset_wanted.store(true); }
+
+void Session::start_fault(faults::FaultSpec spec) {
+  std::lock_guard<std::mutex> lock(impl_->fault_requests_mutex);
+  if (impl_->fault_requests.size() < Impl::kMaxFaultRequests) impl_->fault_requests.push_back({std::move(spec), {}});
+}
+
+void Session::clear_faults(std::string name) {
+  std::lock_guard<std::mutex> lock(impl_->fault_requests_mutex);
+  if (impl_->fault_requests.size() < Impl::kMaxFaultRequests) impl_->fault_requests.push_back({std::nullopt, std::move(name)});
+}
 
 SessionSnapshot Session::snapshot() const {
   std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);

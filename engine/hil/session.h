@@ -49,6 +49,10 @@ class Session {
   /// Puts the vehicle back home at rest with the motors stopped (sensor noise restarts from its
   /// seed); simulated time on the wire carries on, so the flight stack sees no clock jump.
   void request_reset();
+  /// Starts a fault now (the dashboard's fault prompt), at the next step; said as any fault is.
+  void start_fault(faults::FaultSpec spec);
+  /// Ends the active faults named `name` (all of them when empty) at the next step.
+  void clear_faults(std::string name);
   /// One line: where the session sends and listens.
   std::string describe() const;
 

@@ -21,6 +21,7 @@
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/message_set.h"
 #include "engine/faults/fault_schedule.h"
+#include "engine/faults/sensor_faults.h"
 #include "engine/model/multicopter.h"
 #include "engine/model/touchdown_monitor.h"
 #include "engine/sensors/sensor_suite.h"
@@ -45,15 +46,24 @@ struct Session::Impl {
   std::optional<LoopLatency> loop_latency;  ///< HIL_SENSOR -> its HIL_ACTUATOR_CONTROLS (loop_latency.h)
   std::optional<vehicle::TrajectoryFlight> pilot;
   faults::FaultSchedule fault_schedule;  ///< --fault, --scenario
+  std::optional<faults::SensorFaults> sensor_faults;  ///< what the sensor faults hold (stuck readings)
   mavlink::FrameEncoder pilot_encoder{mavlink::kGcsSystemId, mavlink::kCompIdMissionPlanner};  ///< a GCS's identity
 
   // Operator controls (the dashboard): requests from other threads, taken at the next step.
   std::atomic<bool> pause_wanted{false};
   std::atomic<bool> reset_wanted{false};
+  struct FaultRequest {
+    std::optional<faults::FaultSpec> start;  ///< none: clear
+    std::string clear_name;                  ///< "" with no start: every active fault
+  };
+  static constexpr std::size_t kMaxFaultRequests = 64;  ///< between two steps; more are ignored
+  std::mutex fault_requests_mutex;
+  std::vector<FaultRequest> fault_requests;
   bool resumed = false;       ///< the first step after a pause: no answer is owed for it
   double time_offset_s = 0;   ///< simulated time before the last reset: the wire's clock never goes back
   uint64_t resets = 0;
 
+  std::string board_mode;      ///< the board's PX4 mode from its HEARTBEAT (scenario conditions)
   double rest_altitude_m = 0;  ///< the body origin's height at rest at home: altitude 0, as PX4's local position
   double next_heartbeat_s = 0;
   double start_wall_s = 0;

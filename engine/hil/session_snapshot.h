@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/faults/fault_schedule.h"
+#include "engine/hil/link_faults.h"
 #include "engine/hil/data_paths.h"
 #include "engine/hil/loop_latency.h"
 
@@ -84,8 +85,8 @@ struct SessionSnapshot {
   // faults (docs/faults.md)
   std::vector<std::string> active_faults;  ///< "gps-loss", "motor:2,0.6"
   std::vector<faults::FaultRecord> faults; ///< every fault that started, with its start and end
-  uint64_t hil_dropped_datagrams = 0;      ///< hil-drop
-  uint64_t hil_delayed_datagrams = 0;      ///< hil-delay
+  LinkFaultCounts hil_link_faults;         ///< what the hil-* faults did to datagrams to the flight stack
+  LinkFaultCounts vio_link_faults;         ///< what the vio-* link faults did to ODOMETRY
   LoopLatencySummary loop_latency;         ///< HIL_SENSOR -> its HIL_ACTUATOR_CONTROLS, wall time (loop_latency.h)
 };
 

@@ -1,11 +1,11 @@
 // The session's tick (docs/architecture.md "The session"): one step of simulated time, in the
 // design's order. Runs on the one thread that owns time.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
 #include "base/common/clock.h"
-#include "engine/faults/sensor_faults.h"
 #include "engine/hil/sensor_messages.h"
 #include "engine/hil/session_impl.h"
 #include "engine/frames/frames.h"
@@ -14,6 +14,8 @@
 #include "base/mavlink/heartbeat.h"
 #include "base/mavlink/wire_units.h"
 #include "engine/telemetry/health.h"
+#include "engine/telemetry/px4_mode.h"
+#include "base/mavlink/messages.h"
 
 namespace hitl::hil {
 
@@ -30,14 +32,15 @@ Status Session::Impl::step(EventSink& events) {
   if (!std::exchange(resumed, false) && std::exchange(sensor_sent, false))
     stack->lockstep_wait(events, [&] { drain(monotonic_s()); });
   // Actuator commands, physics step.
-  model->set_motor_commands(stack->actuators().commands(clock.unpaused_s(monotonic_s())));
+  // (actuators-stale: the model holds the last commands it had, whatever the board sends)
+  if (!fault_schedule.active().actuators_stale) model->set_motor_commands(stack->actuators().commands(clock.unpaused_s(monotonic_s())));
   if (auto st = model->step(); !st) return st;
   const auto& state = model->state();
   touchdowns.observe(state);
   apply_faults(events);
   // Sensors due at this time, with the active sensor faults.
   auto frame = sensors->sample_due(state);
-  faults::apply_sensor_faults(fault_schedule.active(), config.world.atmosphere, frame);
+  sensor_faults->apply(fault_schedule.active(), sim_time_s(), frame, state.rotor_speed_rad_s);
   say_imu_saturated(events);
   // Messages, flushed as one datagram to the flight stack; then VIO and truth.
   const double sent_s = monotonic_s();
@@ -45,7 +48,7 @@ Status Session::Impl::step(EventSink& events) {
   send_messages(frame, t_us, sent_s, events);
   stack->flush();
   stack->actuators().take_new();  // answers counted from here on belong to these sensors
-  if (services->send_vio_if_due(frame.truth, t_us, sim_time_s(), fault_schedule.active().vio_loss)) paths->on_odometry(sent_s);
+  if (services->send_vio_if_due(frame.truth, t_us, sim_time_s(), fault_schedule.active())) paths->on_odometry(sent_s);
   services->send_truth_if_due(frame.truth, t_us, sim_time_s());
   say_send_errors(events);
   stack->check_answered(events);
@@ -53,8 +56,21 @@ Status Session::Impl::step(EventSink& events) {
 }
 
 void Session::Impl::apply_faults(EventSink& events) {
+  std::vector<FaultRequest> requests;
+  {
+    std::lock_guard<std::mutex> lock(fault_requests_mutex);
+    requests.swap(fault_requests);
+  }
+  std::vector<faults::FaultChange> cleared;
+  for (auto& r : requests) {
+    if (r.start) fault_schedule.start_now(std::move(*r.start));
+    else for (auto& c : fault_schedule.clear(r.clear_name, sim_time_s())) cleared.push_back(std::move(c));
+  }
   if (fault_schedule.empty()) return;
-  for (auto& change : fault_schedule.update(sim_time_s())) {
+  const faults::VehicleObservation seen{model->state().p_ENU_m.z() - rest_altitude_m, stack->actuators().armed(), board_mode};
+  auto changes = fault_schedule.update(sim_time_s(), seen);
+  changes.insert(changes.begin(), cleared.begin(), cleared.end());
+  for (auto& change : changes) {
     SessionEvent e{Severity::Info, change.text(), std::nullopt};
     services->announce(e.severity, e.text);
     e.fault = std::move(change);
@@ -62,15 +78,24 @@ void Session::Impl::apply_faults(EventSink& events) {
   }
   const auto& active = fault_schedule.active();
   for (std::size_t i = 0; i < active.motor_effectiveness.size(); ++i) model->set_motor_effectiveness(i, active.motor_effectiveness[i]);
-  stack->set_link_faults(active.hil_drop_p, active.hil_delay_s);
+  stack->set_link_faults(active.hil_link);
+  services->set_vio_link_faults(active.vio_link);
+  sensors->imu().set_noise_scale(active.imu_noise_scale);
+  sensors->gps().set_noise_scale(active.gps_noise_scale);
+  model->set_wind_event(frames::ned_to_enu(active.wind_NED_m_s), active.turbulence_sigma_m_s, active.turbulence_tau_s);
+  model->set_external_force_ENU_N({0.0, 0.0, -active.payload_kg * config.world.gravity_m_s2});  // payload: its weight
 }
 
 void Session::Impl::wait_next_tick(const std::atomic<bool>& stop) {
   // Held datagrams due before the next tick are sent on time, between ticks.
-  while (const auto due_s = stack->next_delayed_s()) {
-    if (stop.load() || *due_s >= pacer->next_due_s()) break;
-    sleep_until_monotonic_s(*due_s);
+  for (;;) {
+    const auto hil_s = stack->next_delayed_s(), vio_s = services->next_vio_delayed_s();
+    if (!hil_s && !vio_s) break;
+    const double due_s = std::min(hil_s.value_or(vio_s.value_or(0)), vio_s.value_or(hil_s.value_or(0)));
+    if (stop.load() || due_s >= pacer->next_due_s()) break;
+    sleep_until_monotonic_s(due_s);
     stack->release_delayed(monotonic_s());
+    services->release_vio_delayed(monotonic_s());
   }
   pacer->wait_next(&stop);
 }
@@ -79,6 +104,10 @@ void Session::Impl::drain(double now_s) {
   stack->drain(now_s, [&](const mavlink::Frame& f, double t_s) {
     paths->on_stack_frame(f, t_s);
     if (f.is<mavlink::msg::HilActuatorControls>()) loop_latency->on_actuator(f.as<mavlink::msg::HilActuatorControls>().time_usec, t_s);
+    if (f.is<mavlink::msg::Heartbeat>()) {  // the board's mode, for the scenario's conditions
+      const auto hb = f.as<mavlink::msg::Heartbeat>();
+      if (hb.autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid)) board_mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
+    }
     if (pilot) pilot->on_board_frame(f);
     services->route_from_stack(f, t_s);
   });
@@ -189,9 +218,9 @@ void Session::Impl::publish() {
                           pilot ? &*pilot : nullptr, paths->stats(now_s), clock.paused(), resets, recording.error()});
   s.active_faults = fault_schedule.active_texts();
   s.faults = fault_schedule.records();
-  s.hil_dropped_datagrams = stack->link_faults().dropped_datagrams();
-  s.hil_delayed_datagrams = stack->link_faults().delayed_datagrams();
   s.loop_latency = loop_latency->summary();
+  s.hil_link_faults = stack->link_faults().counts();
+  s.vio_link_faults = services->vio_link_faults().counts();
   std::lock_guard<std::mutex> lock(snapshot_mutex);
   published = std::move(s);
 }

@@ -54,7 +54,7 @@ StackLink::StackLink(const SessionConfig& config, std::unique_ptr<net::Link> lin
       recording_(recording),
       clock_(clock),
       actuators_(config.actuator_timeout_s),
-      link_faults_(config.seed) {}
+      link_faults_(config.seed, "hil-drop") {}
 
 bool StackLink::wait_for_sitl(const std::atomic<bool>& stop, EventSink& events) {
   const std::string local = link_->local_address() ? link_->local_address()->to_string() : "?";

@@ -264,6 +264,10 @@ void Multicopter::set_motor_effectiveness(std::size_t i, double k) {
   if (i < impl_->inputs.effectiveness.size()) impl_->inputs.effectiveness[i] = std::isfinite(k) && k > 0.0 ? k : 0.0;
 }
 
+void Multicopter::set_wind_event(const Eigen::Vector3d& extra_ENU_m_s, double turbulence_sigma_m_s, double turbulence_tau_s) {
+  impl_->wind.set_event(extra_ENU_m_s, turbulence_sigma_m_s, turbulence_tau_s);
+}
+
 void Multicopter::set_external_force_ENU_N(const Eigen::Vector3d& f_ENU_N) {
   impl_->inputs.external_force_ENU_N = f_ENU_N.allFinite() ? f_ENU_N : Eigen::Vector3d::Zero();
 }

@@ -67,6 +67,9 @@ class Multicopter {
   /// Motor i's effectiveness: its rotor's thrust, drag and torques on the frame x k from the next
   /// step (a motor fault; 1 = healthy, 0 = out). Kept across reset(); a non-finite or negative k is 0.
   void set_motor_effectiveness(std::size_t i, double k);
+  /// A wind event (faults: wind, gust, turbulence) on top of the world's wind, until changed
+  /// (model/wind.h); kept across reset().
+  void set_wind_event(const Eigen::Vector3d& extra_ENU_m_s, double turbulence_sigma_m_s, double turbulence_tau_s);
   /// An extra force on the base origin (tests: side load; a UI "push"), world ENU, until changed.
   void set_external_force_ENU_N(const Eigen::Vector3d& f_ENU_N);
 

@@ -29,7 +29,7 @@ GpsSample Gps::measure(const model::VehicleState& state, double t_s) {
       error_ENU_m_[i] = model::gauss_markov_step(error_ENU_m_[i], dt_s, tau_s,
                                                  model::random_walk_for_stationary_sigma(sigmas_m[i], tau_s), rng_);
     }
-    p_ENU_m[i] += error_ENU_m_[i] + rng_.normal(white_m[i]);
+    p_ENU_m[i] += noise_scale_ * (error_ENU_m_[i] + rng_.normal(white_m[i]));
   }
   const Geodetic g = geodesy_.to_geodetic(p_ENU_m);
   GpsSample s;
@@ -38,16 +38,19 @@ GpsSample Gps::measure(const model::VehicleState& state, double t_s) {
   s.lon_deg = g.lon_deg;
   s.alt_m = g.alt_m;
   s.v_NED_m_s = frames::enu_to_ned(state.v_ENU_m_s);
-  for (int i = 0; i < 3; ++i) s.v_NED_m_s[i] += rng_.normal(config_.velocity_noise_m_s);
+  for (int i = 0; i < 3; ++i) s.v_NED_m_s[i] += noise_scale_ * rng_.normal(config_.velocity_noise_m_s);
   s.ground_speed_m_s = s.v_NED_m_s.head<2>().norm();
-  double cog_deg = std::atan2(s.v_NED_m_s.y(), s.v_NED_m_s.x()) * 180.0 / std::numbers::pi;
-  if (cog_deg < 0.0) cog_deg += 360.0;
-  s.course_over_ground_deg = cog_deg;
+  s.course_over_ground_deg = course_over_ground_deg(s.v_NED_m_s);
   s.eph_m = config_.eph_m;
   s.epv_m = config_.epv_m;
   s.fix_type = 3;
   s.satellites = static_cast<std::uint8_t>(config_.satellites);
   return s;
+}
+
+double course_over_ground_deg(const Eigen::Vector3d& v_NED_m_s) {
+  const double cog_deg = std::atan2(v_NED_m_s.y(), v_NED_m_s.x()) * 180.0 / std::numbers::pi;
+  return cog_deg < 0.0 ? cog_deg + 360.0 : cog_deg;
 }
 
 GpsSample Gps::sample(const model::VehicleState& state, double t_s) {

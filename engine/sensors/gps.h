@@ -28,6 +28,9 @@ class Gps {
   double rate_hz() const { return config_.rate_hz; }
   /// The current wandering position error, ENU [m].
   const Eigen::Vector3d& position_error_ENU_m() const { return error_ENU_m_; }
+  /// The reported position error (wander and white noise) and velocity noise x k from the next
+  /// fix (the gps-noise fault; 1: as configured). The processes draw as before.
+  void set_noise_scale(double k) { noise_scale_ = k; }
 
  private:
   GpsSample measure(const model::VehicleState& state, double t_s);
@@ -39,6 +42,10 @@ class Gps {
   Eigen::Vector3d error_ENU_m_ = Eigen::Vector3d::Zero();
   double last_t_s_ = -1.0;
   std::deque<GpsSample> pending_;  ///< fixes not yet old enough to report (delay)
+  double noise_scale_ = 1.0;
 };
+
+/// Course over ground, 0..360 deg from north towards east, of a NED velocity.
+double course_over_ground_deg(const Eigen::Vector3d& v_NED_m_s);
 
 }  // namespace hitl::sensors

@@ -40,8 +40,10 @@ ImuSample Imu::sample(const model::VehicleState& state, double t_s) {
   const Eigen::Vector3d f_FLU = state.specific_force_FLU_m_s2 + state.alpha_FLU_rad_s2.cross(r_FLU_m) + w.cross(w.cross(r_FLU_m));
   ImuSample s;
   s.time_s = t_s;
-  s.accel_FRD_m_s2 = accel_noise_.apply(frames::flu_to_frd(f_FLU), dt_s);
-  s.gyro_FRD_rad_s = gyro_noise_.apply(frames::flu_to_frd(w), dt_s);
+  const Eigen::Vector3d accel_FRD_m_s2 = frames::flu_to_frd(f_FLU);
+  const Eigen::Vector3d gyro_FRD_rad_s = frames::flu_to_frd(w);
+  s.accel_FRD_m_s2 = accel_FRD_m_s2 + noise_scale_ * (accel_noise_.apply(accel_FRD_m_s2, dt_s) - accel_FRD_m_s2);
+  s.gyro_FRD_rad_s = gyro_FRD_rad_s + noise_scale_ * (gyro_noise_.apply(gyro_FRD_rad_s, dt_s) - gyro_FRD_rad_s);
   if (saturate(s.accel_FRD_m_s2, config_.accel_range_m_s2)) ++saturation_.accel;
   if (saturate(s.gyro_FRD_rad_s, config_.gyro_range_rad_s)) ++saturation_.gyro;
   s.temperature_degC = model::isa_temperature_degC(world_.atmosphere, world_.home.alt_m + state.p_ENU_m.z());

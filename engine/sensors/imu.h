@@ -33,6 +33,9 @@ class Imu {
   const InertialNoise& accel_noise() const { return accel_noise_; }
   const InertialNoise& gyro_noise() const { return gyro_noise_; }
   const ImuSaturation& saturation() const { return saturation_; }
+  /// The errors against truth (noise and bias walk) x k in the next samples (the imu-noise fault;
+  /// 1: as configured). The noise processes draw as before: only what is reported changes.
+  void set_noise_scale(double k) { noise_scale_ = k; }
 
  private:
   model::ImuConfig config_;
@@ -41,6 +44,7 @@ class Imu {
   InertialNoise gyro_noise_;
   double last_t_s_ = -1.0;
   ImuSaturation saturation_;
+  double noise_scale_ = 1.0;
 };
 
 /// Clips each axis to +-the largest 16-bit count of `range` (range * 32767 / 32768); true when any was.

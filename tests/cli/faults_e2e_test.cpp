@@ -60,6 +60,68 @@ TEST(FaultsE2E, ScenarioWithGpsLossAndWeakMotorFliesTheSquareAndIsReported) {
   EXPECT_NEAR(b["hil_gps_received"].get<double>(), 30.0 * (flown_s - 8.0), 30.0);
 }
 
+// The done-when flight: a scenario on conditions with a GPS loss, a motor degradation and a link
+// delay, flown through hitl target in lockstep while a ground station on the board's GCS port
+// (hitl inspect --connect) watches what the board says: STATUSTEXT, its mode, ESTIMATOR_STATUS flags.
+TEST(FaultsE2E, ConditionalScenarioWithGpsLossMotorAndDelayAndWhatTheBoardDid) {
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port(),
+                 gcs_local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "--json", "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
+                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process ground({test::hitl_binary(), "--json", "inspect", "--connect", "127.0.0.1:" + std::to_string(gcs), "--local-port",
+                        std::to_string(gcs_local), "--show", "STATUSTEXT,HEARTBEAT,ESTIMATOR_STATUS", "--duration", "300"});
+  test::Process sim({test::hitl_binary(), "--json", "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil),
+                     "--local-port", std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "5",
+                     "-t", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--scenario",
+                     std::string(HITL_SOURCE_DIR) + "/docs/examples/scenarios/gps-motor-delay.json"});
+  EXPECT_EQ(sim.wait(150s), 0) << sim.err();
+  ground.signal(SIGINT);
+  board.signal(SIGINT);
+  EXPECT_EQ(board.wait(20s), 0) << board.err();
+  ground.wait(20s);
+  const auto lines = sim.out_lines();
+  ASSERT_FALSE(lines.empty()) << sim.err();
+  const auto j = nlohmann::json::parse(lines.back());
+  EXPECT_EQ(j["end"], "trajectory_done") << sim.err();
+  ASSERT_EQ(j["faults"].size(), 3u) << j["faults"].dump();
+  EXPECT_EQ(j["faults"][0]["name"], "gps-loss");
+  EXPECT_EQ(j["faults"][1]["name"], "motor");
+  EXPECT_EQ(j["faults"][2]["name"], "hil-delay");
+  const double gps_start_s = j["faults"][0]["start_s"].get<double>();
+  EXPECT_GT(gps_start_s, 3.0) << "started on the climb through 2 m, not at 0";
+  EXPECT_NEAR(j["faults"][1]["start_s"].get<double>() - gps_start_s, 8.0, 1e-6);
+  EXPECT_NEAR(j["faults"][2]["start_s"].get<double>() - gps_start_s, 18.0, 1e-6);
+  EXPECT_GT(j["hil_link_faults"]["delayed_datagrams"].get<uint64_t>(), 1000u);  // 6 s of 250 Hz
+  // What the board did, second by second (its time: ESTIMATOR_STATUS time_usec), as a ground station saw it.
+  constexpr unsigned kPosHorizAbs = 16;  // ESTIMATOR_STATUS_FLAGS ESTIMATOR_POS_HORIZ_ABS
+  int without_gps_position = 0;
+  bool with_gps_position_at_the_end = false;
+  std::string said;
+  std::printf("board_time_s  flags  custom_mode  base_mode  latest STATUSTEXT\n");
+  for (const auto& line : ground.out_lines()) {
+    const auto g = nlohmann::json::parse(line, nullptr, false);
+    if (!g.contains("latest") || !g["latest"].contains("ESTIMATOR_STATUS")) continue;
+    const auto& latest = g["latest"];
+    const auto& es = latest["ESTIMATOR_STATUS"]["fields"];
+    const unsigned flags = es["flags"].get<unsigned>();
+    const std::string text = latest.contains("STATUSTEXT") ? latest["STATUSTEXT"]["fields"]["text"].get<std::string>() : "";
+    const auto& hb = latest.contains("HEARTBEAT") ? latest["HEARTBEAT"]["fields"] : nlohmann::json::object();
+    std::printf("%12.1f  %5u  %11u  %9u  %s\n", es["time_usec"].get<double>() * 1e-6, flags, hb.value("custom_mode", 0u),
+                hb.value("base_mode", 0u), text.c_str());
+    if (!(flags & kPosHorizAbs)) ++without_gps_position;
+    with_gps_position_at_the_end = flags & kPosHorizAbs;
+    if (said.find(text) == std::string::npos) said += text + "\n";
+  }
+  EXPECT_GT(without_gps_position, 0) << "the board's EKF should lose its absolute horizontal position in the GPS loss";
+  EXPECT_TRUE(with_gps_position_at_the_end) << "and have it back after";
+  EXPECT_NE(said.find("Disarmed by landing"), std::string::npos) << said;
+  // The board's own account: it flew and landed, and got every HIL_GPS the sim sent.
+  const auto b = nlohmann::json::parse(board.out_lines().back());
+  EXPECT_EQ(b["hil_gps_received"].get<uint64_t>(), j["sent"]["HIL_GPS"]["count"].get<uint64_t>());
+  EXPECT_FALSE(b["armed"].get<bool>());
+}
+
 TEST(FaultsE2E, BadFaultsAreRefusedWithExitTwoNamingTheProblem) {
   const std::pair<std::vector<std::string>, std::string> cases[] = {
       {{"--fault", "gps-los@20"}, "--fault 'gps-los@20': unknown fault 'gps-los'; did you mean 'gps-loss'?"},

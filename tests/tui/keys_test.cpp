@@ -144,6 +144,32 @@ TEST(Keys, ShellPrompt) {
   EXPECT_EQ(d.interaction().input.size(), Dispatcher::kMaxCommandLength);
 }
 
+TEST(Keys, FaultPromptStartsOrClearsWhatIsTyped) {
+  Dispatcher d;
+  FakeActions a;
+  const auto m = on_ground();
+  d.on_key(Key::character('x'), m, &a);
+  ASSERT_EQ(d.interaction().mode, Interaction::Mode::Prompt);
+  EXPECT_NE(d.interaction().label.find("fault"), std::string::npos);
+  for (char c : std::string("gps-loss+10")) d.on_key(Key::character(c), m, &a);
+  d.on_key({Key::Kind::Enter, 0}, m, &a);
+  ASSERT_EQ(a.done.size(), 1u);
+  EXPECT_EQ(a.done[0].first, Action::Fault);
+  EXPECT_EQ(a.done[0].second, "gps-loss+10");
+  // The shell's prompt is still the shell's.
+  d.on_key(Key::character('s'), m, &a);
+  d.on_key(Key::character('v'), m, &a);
+  d.on_key({Key::Kind::Enter, 0}, m, &a);
+  ASSERT_EQ(a.done.size(), 2u);
+  EXPECT_EQ(a.done[1].first, Action::Shell);
+  // Refused where there is no simulator: said, no prompt.
+  a.refuse = Action::Fault;
+  const auto r = d.on_key(Key::character('x'), m, &a);
+  EXPECT_EQ(d.interaction().mode, Interaction::Mode::Normal);
+  ASSERT_TRUE(r.note);
+  EXPECT_EQ(*r.note, "fault: no autopilot yet");
+}
+
 TEST(Keys, RefusalsAndViewOnlyDashboards) {
   Dispatcher d;
   FakeActions a;

@@ -153,6 +153,33 @@ TEST(TuiE2E, FKeyFliesTheTrajectoryInProcess) {
   setup.board.wait(10s);
 }
 
+TEST(TuiE2E, XKeyStartsAndClearsAFaultLive) {
+  const std::string tmux_bin = tmux_path();
+  if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  SimAgainstTarget setup;
+  ASSERT_TRUE(setup.board.wait_for_stderr("EMULATED", 10s)) << setup.board.err();
+  Tmux tmux(tmux_bin, "tui-fault");
+  tmux.start(setup.sim_command("--lockstep"));
+  std::string s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
+  tmux.keys({"x"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("fault: NAME") != std::string::npos; }, 10s, &s)) << s;
+  tmux.keys({"motor:2,0.5", "Enter"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("fault motor:2,0.5 started") != std::string::npos; }, 10s, &s)) << s;
+  EXPECT_NE(s.find("faults: motor:2,0.5"), std::string::npos) << s;  // the state line
+  tmux.keys({"x"});
+  tmux.keys({"clear motor", "Enter"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("fault motor:2,0.5 ended") != std::string::npos; }, 10s, &s)) << s;
+  tmux.keys({"x"});
+  tmux.keys({"motor:9,1", "Enter"});  // refused, said
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("fault: 'motor:9,1'") != std::string::npos; }, 10s, &s)) << s;
+  tmux.keys({"q"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
+  EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
+  setup.board.signal(SIGINT);
+  setup.board.wait(10s);
+}
+
 // `hitl bridge --tui`: the link panel shows the board up with a TIMESYNC round trip, the data
 // paths show packets each way, and `a` goes through the bridge's client port to the board, whose
 // refusal (no simulator feeds its EKF) comes back in the messages panel.

@@ -67,7 +67,7 @@ TEST(Scenario, RefusesBadFilesNamingTheEvent) {
       {"[]", "must be an object {\"events\""},
       {"{\"events\": [{\"at_s\": 1}]}", "events[0]: no \"fault\""},
       {"{\"events\": [{\"fault\": \"gps-loss\"}]}", "events[0]: no \"at_s\""},
-      {"{\"events\": [{\"at_s\": 1, \"fault\": \"gps-loss\", \"when\": 2}]}", "unknown key 'when'"},
+      {"{\"events\": [{\"at_s\": 1, \"fault\": \"gps-loss\", \"then\": 2}]}", "unknown key 'then'"},
       {"{\"events\": [{\"at_s\": 1, \"fault\": \"gps-loss\", \"duration_s\": -1}]}", "events[0]: fault gps-loss: the duration"},
       {"{\"events\": [{\"at_s\": 1, \"fault\": \"motor\", \"args\": [1]}]}", "takes 2 arguments"},
       {"{\"events\": [{\"at_s\": \"1\", \"fault\": \"gps-loss\"}]}", "at_s: must be a number"},
@@ -98,13 +98,104 @@ TEST(FaultSchedule, StartsAndEndsAtSimulatedTimesAndFoldsWhatIsActive) {
   const auto& a = s.active();
   EXPECT_FALSE(a.gps_loss);
   EXPECT_DOUBLE_EQ(a.motor_effectiveness[2], 0.5);
-  EXPECT_DOUBLE_EQ(a.hil_drop_p, 0.75);  // two independent drops: 1 - 0.5 * 0.5
+  EXPECT_DOUBLE_EQ(a.hil_link.drop_p, 0.75);  // two independent drops: 1 - 0.5 * 0.5
   EXPECT_NEAR(a.baro_offset_Pa, 10 * (0.040 - 0.004), 1e-9);
   ASSERT_EQ(s.records().size(), 5u);
   EXPECT_EQ(s.records()[4].name, "gps-loss");
   EXPECT_DOUBLE_EQ(s.records()[4].start_s, 0.020);
   EXPECT_NEAR(*s.records()[4].end_s, 0.032, 1e-12);
   EXPECT_FALSE(s.records()[3].end_s);
+}
+
+TEST(Scenario, ConditionsStartAndEndFaultsOnAltitudeArmedModeAndAnotherEvent) {
+  auto specs = parse_scenario(R"({"events": [
+      {"id": "climb", "when": {"altitude_above_m": 5}, "fault": "gps-loss", "end_when": {"mode": "Land"}},
+      {"when": {"after": "climb", "delay_s": 3}, "fault": "motor", "args": [2, 0.7], "duration_s": 4},
+      {"at_s": 1, "when": {"armed": true}, "fault": "hil-delay", "args": [20], "end_when": {"armed": false}}]})",
+                              "scenario 'c.json'");
+  ASSERT_TRUE(specs) << specs.error().message;
+  FaultSchedule schedule(*specs);
+  VehicleObservation seen{0, false, "Hold"};
+  EXPECT_TRUE(schedule.update(0.5, seen).empty());
+  seen.armed = true;
+  EXPECT_TRUE(schedule.update(0.9, seen).empty());  // armed, but not before at_s
+  auto c = schedule.update(1.0, seen);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].spec.kind, FaultKind::HilDelay);
+  seen.altitude_m = 5.5;
+  c = schedule.update(4.0, seen);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].spec.kind, FaultKind::GpsLoss);
+  seen.altitude_m = 2;  // the condition latched: it stays started
+  EXPECT_TRUE(schedule.update(6.9, seen).empty());
+  c = schedule.update(7.0, seen);  // 3 s after "climb"
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].spec.kind, FaultKind::Motor);
+  EXPECT_DOUBLE_EQ(schedule.active().motor_effectiveness[2], 0.7);
+  seen.mode = "Land";
+  c = schedule.update(8.0, seen);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_FALSE(c[0].started);
+  EXPECT_EQ(c[0].spec.kind, FaultKind::GpsLoss);
+  c = schedule.update(11.0, seen);  // the motor's 4 s from its start
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].spec.kind, FaultKind::Motor);
+  seen.armed = false;
+  c = schedule.update(12.0, seen);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].spec.kind, FaultKind::HilDelay);
+  EXPECT_FALSE(c[0].started);
+}
+
+TEST(Scenario, RefusesBadConditionsNamingTheEvent) {
+  auto bad = [](const std::string& events) {
+    auto r = parse_scenario(R"({"events": [)" + events + "]}", "scenario 'c.json'");
+    return r ? std::string("(parsed)") : r.error().message;
+  };
+  EXPECT_NE(bad(R"({"fault": "gps-loss"})").find("no \"at_s\""), std::string::npos);
+  EXPECT_NE(bad(R"({"when": {}, "fault": "gps-loss"})").find("events[0].when: names nothing"), std::string::npos);
+  EXPECT_NE(bad(R"({"when": {"altitude_above_m": "high"}, "fault": "gps-loss"})").find("events[0].when.altitude_above_m: must be a number"),
+            std::string::npos);
+  EXPECT_NE(bad(R"({"when": {"armed": 1}, "fault": "gps-loss"})").find("must be true or false"), std::string::npos);
+  EXPECT_NE(bad(R"({"when": {"alt": 3}, "fault": "gps-loss"})").find("unknown key 'alt'"), std::string::npos);
+  EXPECT_NE(bad(R"({"when": {"after": "nobody"}, "fault": "gps-loss"})").find("'nobody' is no other event's id"), std::string::npos);
+  EXPECT_NE(bad(R"({"id": "a", "at_s": 1, "fault": "gps-loss"}, {"id": "a", "at_s": 2, "fault": "vio-loss"})").find("events[1].id: 'a'"),
+            std::string::npos);
+  EXPECT_NE(bad(R"({"when": {"armed": true, "delay_s": -1}, "fault": "gps-loss"})").find("delay_s: must be within 0..86400"),
+            std::string::npos);
+}
+
+TEST(FaultSchedule, FaultsStartedAndClearedByHand) {
+  auto live = parse_live_fault("motor:2,0.5");
+  ASSERT_TRUE(live) << live.error().message;
+  auto timed = parse_live_fault("gps-loss+2.5");
+  ASSERT_TRUE(timed) << timed.error().message;
+  EXPECT_DOUBLE_EQ(*timed->duration_s, 2.5);
+  EXPECT_TRUE(parse_live_fault("imu-bias:1e+0,0,0"));  // an exponent's sign is no duration
+  const auto at = parse_live_fault("gps-loss@3");
+  ASSERT_FALSE(at);
+  EXPECT_NE(at.error().message.find("starts now"), std::string::npos);
+  const auto bad = parse_live_fault("motor:7,0.5");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message.find("@0"), std::string::npos) << bad.error().message;
+
+  FaultSchedule schedule;
+  schedule.update(10.0);
+  schedule.start_now(*live);
+  schedule.start_now(*timed);
+  auto c = schedule.update(10.004);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_NEAR(schedule.records()[0].start_s, 10.004, 1e-9);
+  EXPECT_DOUBLE_EQ(schedule.active().motor_effectiveness[2], 0.5);
+  c = schedule.clear("motor", 11.0);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_FALSE(c[0].started);
+  EXPECT_DOUBLE_EQ(schedule.active().motor_effectiveness[2], 1.0);
+  EXPECT_TRUE(schedule.active().gps_loss);
+  c = schedule.update(12.504);  // 2.5 s from its start
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_FALSE(schedule.active().gps_loss);
+  EXPECT_TRUE(schedule.clear("", 13).empty());  // nothing left to clear
 }
 
 }  // namespace

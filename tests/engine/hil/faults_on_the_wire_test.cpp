@@ -2,120 +2,22 @@
 // loopback stamps each datagram's arrival and reads HIL_SENSOR and HIL_GPS off it.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <thread>
+#include <cstring>
 
-#include "base/common/clock.h"
 #include "base/mavlink/frame_parser.h"
 #include "base/mavlink/message_set.h"
 #include "base/mavlink/messages.h"
-#include "engine/hil/session.h"
 #include "engine/mavlink/tlog.h"
-#include "engine/model/x500_defaults.h"
-#include "tests/support/process.h"
+#include "tests/engine/hil/wire_board.h"
 
 namespace hitl::hil {
 namespace {
 
 namespace msg = mavlink::msg;
-
-struct Arrival {
-  double wall_s;   ///< monotonic, when the datagram arrived
-  double sim_s;    ///< its HIL_SENSOR's time_usec (-1: none in it)
-  bool gps;        ///< it held a HIL_GPS
-  double gps_sim_s = -1;
-  Eigen::Vector3d accel_FRD_m_s2 = Eigen::Vector3d::Zero();
-};
-
-/// A UDP socket on 127.0.0.1 that stamps every datagram as it arrives.
-class Board {
- public:
-  Board() {
-    fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a);
-    socklen_t n = sizeof a;
-    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &n);
-    port_ = ntohs(a.sin_port);
-    timeval tv{0, 100000};
-    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  }
-  ~Board() { ::close(fd_); }
-  uint16_t port() const { return port_; }
-  /// Every datagram until `until_sim_s` of simulated time arrived (or `timeout_s` of wall time).
-  std::vector<Arrival> receive_until(double until_sim_s, double timeout_s) {
-    std::vector<Arrival> out;
-    mavlink::FrameParser parser(messages_);  // the parser keeps a reference to its set
-    uint8_t buf[65536];
-    const double end_s = monotonic_s() + timeout_s;
-    while (monotonic_s() < end_s) {
-      const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
-      if (n <= 0) continue;
-      Arrival a{monotonic_s(), -1, false};
-      parser.parse_datagram({buf, static_cast<std::size_t>(n)}, [&](const mavlink::Frame& f) {
-        if (f.is<msg::HilSensor>()) {
-          const auto m = f.as<msg::HilSensor>();
-          a.sim_s = static_cast<double>(m.time_usec) * 1e-6;
-          a.accel_FRD_m_s2 = {m.xacc, m.yacc, m.zacc};
-        }
-        if (f.is<msg::HilGps>()) {
-          a.gps = true;
-          a.gps_sim_s = static_cast<double>(f.as<msg::HilGps>().time_usec) * 1e-6;
-        }
-      });
-      out.push_back(a);
-      if (a.sim_s >= until_sim_s) break;
-    }
-    return out;
-  }
-
- private:
-  mavlink::MessageSet messages_ = mavlink::MessageSet::compiled();
-  int fd_ = -1;
-  uint16_t port_ = 0;
-};
-
-/// A session to `board` with these faults, run on its own thread while the test receives.
-class Running {
- public:
-  Running(Board& board, const std::vector<std::string>& specs, bool noise = true, const std::string& record_path = "") {
-    SessionConfig c;
-    c.target_ip = "127.0.0.1";
-    c.hil_port = board.port();
-    c.local_port = test::free_udp_port();
-    c.vio = false;
-    c.clients_port = 0;
-    c.noise = noise;
-    c.record_path = record_path;
-    c.vehicle = model::x500_vehicle_config();
-    c.world = model::default_world_config();
-    for (const auto& s : specs) c.faults.push_back(*faults::parse_fault(s));
-    auto session = Session::create(c);
-    EXPECT_TRUE(session) << session.error().message;
-    session_ = std::move(session.value());
-    thread_ = std::thread([this] { (void)session_->run(stop_, observer_); });
-  }
-  ~Running() {
-    stop_.store(true);
-    thread_.join();
-  }
-  SessionSnapshot snapshot() const { return session_->snapshot(); }
-
- private:
-  std::unique_ptr<Session> session_;
-  Session::Observer observer_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
+using test_wire::Board;
+using test_wire::Running;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -129,8 +31,8 @@ TEST(FaultsOnTheWire, GpsLossSendsNoHilGpsInItsWindowAndHilGpsAgainAfter) {
   int before = 0, during = 0, after = 0;
   for (const auto& a : got) {
     if (!a.gps) continue;
-    if (a.gps_sim_s < 0.5) ++before;
-    else if (a.gps_sim_s < 1.0 - 1e-6) ++during;
+    if (a.gps_sim_s() < 0.5) ++before;
+    else if (a.gps_sim_s() < 1.0 - 1e-6) ++during;
     else ++after;
   }
   EXPECT_GT(before, 10);  // 30 Hz
@@ -149,9 +51,10 @@ TEST(FaultsOnTheWire, ImuBiasShiftsHilSensorAccelByTheBias) {
   Eigen::Vector3d before = Eigen::Vector3d::Zero(), after = Eigen::Vector3d::Zero();
   int nb = 0, na = 0;
   for (const auto& a : got) {
-    if (a.sim_s < 0.1) continue;  // settled on the gear
-    if (a.sim_s < 0.5 - 1e-6) before += a.accel_FRD_m_s2, ++nb;
-    else if (a.sim_s >= 0.5 - 1e-6) after += a.accel_FRD_m_s2, ++na;
+    if (a.sim_s < 0.1 || !a.sensor) continue;  // settled on the gear
+    const Eigen::Vector3d accel_FRD_m_s2(a.sensor->xacc, a.sensor->yacc, a.sensor->zacc);
+    if (a.sim_s < 0.5 - 1e-6) before += accel_FRD_m_s2, ++nb;
+    else after += accel_FRD_m_s2, ++na;
   }
   ASSERT_GT(nb, 50);
   ASSERT_GT(na, 50);
@@ -184,7 +87,33 @@ TEST(FaultsOnTheWire, HilDelayArrivesLaterByTheSettingWithoutLateTicks) {
   EXPECT_EQ(missing, 0);
   const auto s = run.snapshot();
   EXPECT_LE(s.late_ticks, 2u) << "the 250 Hz loop must not wait for the held datagrams";
-  EXPECT_GT(s.hil_delayed_datagrams, 200u);
+  EXPECT_GT(s.hil_link_faults.delayed, 200u);
+}
+
+TEST(FaultsOnTheWire, VioDelayArrivesLaterByTheSettingAtTheVioServerOnlyOnThatLink) {
+  Board board, vio;
+  Running run(board, {"vio-delay:20@1+1", "vio-dup:1@2.2"}, true, "", test_wire::vio_to(vio));
+  const auto got = vio.receive_until(2.8, 10);
+  std::vector<double> base, delayed;
+  int duplicated = 0;
+  double last_sim_s = -1;
+  for (const auto& a : got) {
+    if (!a.odometry) continue;
+    const double offset_s = a.wall_s - a.sim_s;
+    if (a.sim_s > 0.3 && a.sim_s < 0.95) base.push_back(offset_s);
+    if (a.sim_s > 1.1 && a.sim_s < 1.9) delayed.push_back(offset_s);
+    if (a.sim_s == last_sim_s) ++duplicated;
+    last_sim_s = a.sim_s;
+  }
+  ASSERT_GT(base.size(), 15u);
+  ASSERT_GT(delayed.size(), 20u);
+  const double measured_ms = (median(delayed) - median(base)) * 1e3;
+  std::printf("vio-delay:20 measured %.3f ms at the VIO server (median over %zu ODOMETRY)\n", measured_ms, delayed.size());
+  EXPECT_NEAR(measured_ms, 20.0, 1.0);
+  EXPECT_GT(duplicated, 10);  // vio-dup:1 from 2.2 s: every ODOMETRY twice
+  const auto s = run.snapshot();
+  EXPECT_GT(s.vio_link_faults.delayed, 25u);
+  EXPECT_EQ(s.hil_link_faults.delayed, 0u);  // the HIL link untouched
 }
 
 TEST(FaultsOnTheWire, HilDropHalfLosesAboutHalfTheDatagrams) {
@@ -198,7 +127,7 @@ TEST(FaultsOnTheWire, HilDropHalfLosesAboutHalfTheDatagrams) {
   EXPECT_GT(in_window, 125 - 24);
   EXPECT_LT(in_window, 125 + 24);
   const auto s = run.snapshot();
-  EXPECT_EQ(s.hil_dropped_datagrams + static_cast<uint64_t>(in_window), 250u);
+  EXPECT_EQ(s.hil_link_faults.dropped + static_cast<uint64_t>(in_window), 250u);
 }
 
 TEST(FaultsOnTheWire, TheRecordingSaysWhatWasInjectedWhen) {
