@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "base/common/clock.h"
 #include "engine/vehicle/patient_link.h"
 #include "tui/collect.h"
 #include "tui/draw.h"
@@ -175,6 +176,8 @@ DashboardModel SimDashboard::collect() {
       {"imu sat", count(s.imu_accel_saturated + s.imu_gyro_saturated), flag(s.imu_accel_saturated + s.imu_gyro_saturated)},
       {"touchdowns", count(s.touchdowns)},
   };
+  graphs_.add(monotonic_s(), m, std::nullopt);
+  m.graphs = graphs_.panel();
   return m;
 }
 
