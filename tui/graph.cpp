@@ -114,11 +114,12 @@ std::pair<double, double> range_of(const std::vector<std::vector<double>>& serie
   return {lo, hi};
 }
 
-GraphSymbols choose_graph_symbols(const char* graph_symbol_env, bool utf8_locale) {
+GraphSymbols choose_graph_symbols(const char* graph_symbol_env, bool utf8_locale, const char* term) {
   const std::string_view env = graph_symbol_env != nullptr ? graph_symbol_env : "";
   if (env == "ascii") return GraphSymbols::Ascii;
   if (env == "braille") return GraphSymbols::Braille;
-  return utf8_locale ? GraphSymbols::Braille : GraphSymbols::Ascii;
+  const bool linux_console = term != nullptr && std::string_view(term) == "linux";
+  return utf8_locale && !linux_console ? GraphSymbols::Braille : GraphSymbols::Ascii;
 }
 
 std::string utf8(char32_t ch) {

@@ -37,9 +37,10 @@ void overlay(std::vector<std::u32string>& bottom, const std::vector<std::u32stri
 /// (flat series sit mid-height); {0, min_span} when there are none.
 std::pair<double, double> range_of(const std::vector<std::vector<double>>& series, double min_span);
 
-/// How the dashboard draws graphs: HITL_GRAPH_SYMBOL ("braille" or "ascii"; unset or anything
-/// else: by the locale) and whether the locale's character set is UTF-8.
-GraphSymbols choose_graph_symbols(const char* graph_symbol_env, bool utf8_locale);
+/// How the dashboard draws graphs: HITL_GRAPH_SYMBOL ("braille" or "ascii") when set to one of
+/// them; else braille when the locale's character set is UTF-8 and TERM is not "linux" (the
+/// Linux console's font has no braille; btop turns to its tty mode there too).
+GraphSymbols choose_graph_symbols(const char* graph_symbol_env, bool utf8_locale, const char* term);
 
 /// A cell as UTF-8.
 std::string utf8(char32_t ch);

@@ -107,7 +107,7 @@ Expected<std::unique_ptr<Terminal>> Terminal::open() {
   curs_set(0);
   for (int sig : kStopSignals) install(sig, on_stop_signal);
   for (int sig : kFatalSignals) install(sig, on_fatal_signal);
-  t->screen_ = std::make_unique<NcursesScreen>(choose_graph_symbols(std::getenv("HITL_GRAPH_SYMBOL"), utf8_locale));
+  t->screen_ = std::make_unique<NcursesScreen>(choose_graph_symbols(std::getenv("HITL_GRAPH_SYMBOL"), utf8_locale, std::getenv("TERM")));
   return t;
 }
 

@@ -90,11 +90,13 @@ TEST(Graph, RangeWidensAFlatSeries) {
 }
 
 TEST(Graph, SymbolsFollowTheLocaleUnlessTheUserSays) {
-  EXPECT_EQ(choose_graph_symbols(nullptr, true), GraphSymbols::Braille);
-  EXPECT_EQ(choose_graph_symbols(nullptr, false), GraphSymbols::Ascii);
-  EXPECT_EQ(choose_graph_symbols("ascii", true), GraphSymbols::Ascii);
-  EXPECT_EQ(choose_graph_symbols("braille", false), GraphSymbols::Braille);
-  EXPECT_EQ(choose_graph_symbols("nonsense", true), GraphSymbols::Braille);
+  EXPECT_EQ(choose_graph_symbols(nullptr, true, "xterm-256color"), GraphSymbols::Braille);
+  EXPECT_EQ(choose_graph_symbols(nullptr, false, "xterm-256color"), GraphSymbols::Ascii);
+  EXPECT_EQ(choose_graph_symbols(nullptr, true, "linux"), GraphSymbols::Ascii);  // the Linux console
+  EXPECT_EQ(choose_graph_symbols(nullptr, true, nullptr), GraphSymbols::Braille);
+  EXPECT_EQ(choose_graph_symbols("ascii", true, "tmux-256color"), GraphSymbols::Ascii);
+  EXPECT_EQ(choose_graph_symbols("braille", false, "linux"), GraphSymbols::Braille);
+  EXPECT_EQ(choose_graph_symbols("nonsense", true, "tmux"), GraphSymbols::Braille);
 }
 
 TEST(GraphHistory, RingKeepsTheLastCapacityValues) {
