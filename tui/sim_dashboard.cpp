@@ -1,6 +1,7 @@
 #include "tui/sim_dashboard.h"
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "base/common/clock.h"
@@ -82,6 +83,8 @@ void SimDashboard::perform(Action action, const std::string& argument) {
       vehicle::FlyTrajectoryOptions options;
       options.mode = dashboard_.trajectory_mode;
       options.truth_sysid = config_.sysid;
+      options.on_tracking_error = [this](double e) { tracking_error_m_.store(e); };
+      tracking_error_m_.store(std::numeric_limits<double>::quiet_NaN());
       auto link = vehicle::session_client_options(config_.clients_port, 5.0);
       auto started = trajectory_.start(
           link, *dashboard_.trajectory, options, [this](const std::string& text) { log_.add(Severity::Info, text); },
@@ -176,7 +179,7 @@ DashboardModel SimDashboard::collect() {
       {"imu sat", count(s.imu_accel_saturated + s.imu_gyro_saturated), flag(s.imu_accel_saturated + s.imu_gyro_saturated)},
       {"touchdowns", count(s.touchdowns)},
   };
-  graphs_.add(monotonic_s(), m, std::nullopt);
+  graphs_.add(monotonic_s(), m, m.trajectory_running ? std::optional<double>(tracking_error_m_.load()) : std::nullopt);
   m.graphs = graphs_.panel();
   return m;
 }

@@ -56,6 +56,7 @@ class SimDashboard : public DashboardSource, public DashboardActions, public hil
   SimDashboardConfig dashboard_;
   MessageLog log_;
   GraphHistory graphs_;  ///< the last 60 s for the graphs (collect() is the only user)
+  std::atomic<double> tracking_error_m_{0};  ///< the flying trajectory's latest, for the graphs
   BoardClients board_;
   vehicle::TrajectoryWorker trajectory_;
   mutable std::mutex finished_mutex_;

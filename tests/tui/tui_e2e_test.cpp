@@ -145,6 +145,26 @@ TEST(TuiE2E, GraphsAt200x60InBrailleAndAscii) {
   setup.board.wait(10s);
 }
 
+// While `f` flies the trajectory, the graphs add the tracking error the flight is scored on.
+TEST(TuiE2E, GraphsShowTheTrackingErrorWhileATrajectoryFlies) {
+  const std::string tmux_bin = tmux_path();
+  if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  SimAgainstTarget setup;
+  const std::string trajectory = std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json";
+  Tmux tmux(tmux_bin, "tui-graphs-fly");
+  tmux.start("LC_ALL=C.UTF-8 " + setup.sim_command("--lockstep --speed 5 -t " + shell_quoted(trajectory)), 200, 60);
+  std::string s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(%\s+ready)")); }, 90s, &s)) << s;
+  EXPECT_EQ(s.find("Tracking error m"), std::string::npos) << s;  // nothing flown yet
+  tmux.keys({"f"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(Tracking error m: now \d+\.\d\d)")); }, 90s, &s)) << s;
+  EXPECT_GT(braille_cells(s), 10) << s;
+  tmux.keys({"q"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
+  setup.board.signal(SIGINT);
+  setup.board.wait(10s);
+}
+
 /// The processes `pid` started (its threads' children), from /proc.
 std::vector<std::string> children_of(const std::string& pid) {
   std::vector<std::string> out;
