@@ -118,6 +118,24 @@ struct LinkField {
   Health health = Health::Good;
 };
 
+/// One data path's rate over the graphs' window, against its expected rate.
+struct RateGraph {
+  std::string name;
+  double expected_hz = 0;          ///< 0: nothing to hold it to (drawn against its own peak)
+  std::vector<double> rate_hz;     ///< oldest first, NaN where the path was absent
+};
+
+/// The rolling graphs (graph_history.h): samples oldest first, one per sample period, NaN where
+/// there was no value; at most `capacity` each.
+struct GraphsPanel {
+  double window_s = 60;
+  std::size_t capacity = 600;
+  std::vector<double> truth_altitude_m;
+  std::vector<double> estimate_altitude_m;
+  std::vector<double> tracking_error_m;  ///< all NaN (or empty) when no trajectory flew in the window
+  std::vector<RateGraph> rates;
+};
+
 struct DashboardModel {
   std::string title;               ///< "hitl sim", "hitl inspect"
   std::string state;               ///< "running", "PAUSED", ...
@@ -136,6 +154,7 @@ struct DashboardModel {
   bool trajectory_running = false; ///< f then asks whether to stop it
   std::string busy;                ///< an action in flight, for the footer ("arming ...")
   std::optional<LogLine> outcome;  ///< the last key's outcome, pinned in the header
+  std::optional<GraphsPanel> graphs;  ///< the sim's rolling graphs, drawn when the terminal has room
 };
 
 }  // namespace hitl::tui

@@ -19,6 +19,27 @@ int link_height(const DashboardModel& model, int width) {
 
 int ekf_height(bool wide) { return 2 + (wide ? 6 : 5); }
 
+namespace {
+
+/// Graphs in what the panels leave: the left column under the link's own rows (or under the loop
+/// latency's), or the left half of messages that run across the bottom.
+void place_graphs(Layout& l, int width, int height, const DashboardModel& m) {
+  if (!m.graphs || (width <= kMinWidth && height <= kMinHeight)) return;
+  const int link_own = link_height(m, l.link.w);
+  if (l.link.x == 0 && l.link.h - link_own >= kGraphsMinHeight) {
+    l.graphs = {0, l.link.y + link_own, l.link.w, l.link.h - link_own};
+    l.link.h = link_own;
+  } else if (!l.latency.empty() && l.latency.h - kLatencyHeight >= kGraphsMinHeight) {  // below the loop latency
+    l.graphs = {0, l.latency.y + kLatencyHeight, l.latency.w, l.latency.h - kLatencyHeight};
+    l.latency.h = kLatencyHeight;
+  } else if (l.messages.x == 0 && l.messages.w == width && l.messages.h >= kGraphsMinHeight && width >= 2 * kMinWidth) {
+    l.graphs = {0, l.messages.y, width / 2, l.messages.h};
+    l.messages = {width / 2, l.messages.y, width - width / 2, l.messages.h};
+  }
+}
+
+}  // namespace
+
 Layout layout_for(int width, int height, const DashboardModel& m) {
   Layout l;
   if (width < kMinWidth || height < kMinHeight) {
@@ -81,6 +102,7 @@ Layout layout_for(int width, int height, const DashboardModel& m) {
     l.link = {0, left_used, left_w, std::max(0, bottom - left_used)};
     l.messages = {left_w, ry, right_w, std::max(0, bottom - ry)};
   }
+  place_graphs(l, width, height, m);
   return l;
 }
 

@@ -3,7 +3,9 @@
 // messages go where they get the most rows: down the right column under the EKF, or across the
 // whole width under the link when the left column is the shorter one; wider panels show more columns and longer bars
 // (each panel decides from its own width). A source without vehicle panels (inspect) gets the
-// data paths across the top, then link, then messages.
+// data paths across the top, then link, then messages. A model with graphs (the sim's) gets them
+// in the room left over, never at 80x24: under the link when the left column has kGraphsMinHeight
+// rows to spare, else beside the messages when those run across the bottom.
 #pragma once
 
 #include "tui/dashboard_model.h"
@@ -17,12 +19,15 @@ inline constexpr int kMinHeight = 24;
 inline constexpr int kTallHeight = 40;
 /// A panel at least this wide inside shows its extra columns.
 inline constexpr int kWidePanel = 56;
+/// The fewest rows (box included) the graphs panel is given.
+inline constexpr int kGraphsMinHeight = 12;
 
 struct Layout {
   bool too_small = false;
   Rect header, footer;
   Rect paths, dsp_hitl, link, vehicle, ekf, messages;  ///< empty when the panel is not shown
   Rect latency;  ///< loop latency: tall terminals only, in rows the left column has spare below the link
+  Rect graphs;
 };
 
 /// Rows each panel needs for its content (borders included), given the model.

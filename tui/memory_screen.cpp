@@ -2,21 +2,23 @@
 
 namespace hitl::tui {
 
-MemoryScreen::MemoryScreen(int width, int height)
-    : width_(width), height_(height), cells_(static_cast<std::size_t>(width * height)) {}
+MemoryScreen::MemoryScreen(int width, int height, GraphSymbols symbols)
+    : width_(width), height_(height), cells_(static_cast<std::size_t>(width * height)), symbols_(symbols) {}
 
 void MemoryScreen::clear() { cells_.assign(cells_.size(), Cell{}); }
 
-void MemoryScreen::put(int x, int y, char ch, Style style) {
+void MemoryScreen::put(int x, int y, char32_t ch, Style style) {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return;
   cells_[static_cast<std::size_t>(y * width_ + x)] = {ch, style};
 }
 
 void MemoryScreen::text(int x, int y, std::string_view text, Style style) {
   for (const char c : text) {
-    put(x++, y, (c >= 0x20 && c < 0x7F) ? c : '?', style);
+    put(x++, y, (c >= 0x20 && c < 0x7F) ? static_cast<char32_t>(c) : U'?', style);
   }
 }
+
+void MemoryScreen::glyph(int x, int y, char32_t ch, Style style) { put(x, y, ch, style); }
 
 void MemoryScreen::box(const Rect& r, std::string_view title, Style style) {
   if (r.w < 2 || r.h < 2) return;
@@ -41,8 +43,23 @@ void MemoryScreen::box(const Rect& r, std::string_view title, Style style) {
 std::string MemoryScreen::row(int y) const {
   std::string out;
   if (y < 0 || y >= height_) return out;
-  for (int x = 0; x < width_; ++x) out += cells_[static_cast<std::size_t>(y * width_ + x)].ch;
+  for (int x = 0; x < width_; ++x) {
+    const char32_t c = cells_[static_cast<std::size_t>(y * width_ + x)].ch;
+    out += c < 0x80 ? static_cast<char>(c) : '*';
+  }
   return out;
+}
+
+std::string MemoryScreen::row_utf8(int y) const {
+  std::string out;
+  if (y < 0 || y >= height_) return out;
+  for (int x = 0; x < width_; ++x) out += utf8(cells_[static_cast<std::size_t>(y * width_ + x)].ch);
+  return out;
+}
+
+char32_t MemoryScreen::glyph_at(int x, int y) const {
+  if (x < 0 || y < 0 || x >= width_ || y >= height_) return U'\0';
+  return cells_[static_cast<std::size_t>(y * width_ + x)].ch;
 }
 
 std::string MemoryScreen::dump() const {
@@ -53,7 +70,8 @@ std::string MemoryScreen::dump() const {
 
 char MemoryScreen::at(int x, int y) const {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return '\0';
-  return cells_[static_cast<std::size_t>(y * width_ + x)].ch;
+  const char32_t c = cells_[static_cast<std::size_t>(y * width_ + x)].ch;
+  return c < 0x80 ? static_cast<char>(c) : '*';
 }
 
 Style MemoryScreen::style_at(int x, int y) const {

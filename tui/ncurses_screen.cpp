@@ -40,7 +40,7 @@ CursesLook curses_look(const Style& style, bool colour) {
   return look;
 }
 
-NcursesScreen::NcursesScreen() {
+NcursesScreen::NcursesScreen(GraphSymbols symbols) : symbols_(symbols) {
   colour_ = has_colors();
   if (colour_) {
     start_color();
@@ -73,6 +73,22 @@ void NcursesScreen::text(int x, int y, std::string_view text, Style style) {
   // The bottom-right cell cannot be written without scrolling: stop one short there.
   const int n = std::min(static_cast<int>(clean.size()), y == LINES - 1 ? room - 1 : room);
   if (n > 0) mvaddnstr(y, x, clean.c_str(), n);
+  attr_set(A_NORMAL, 0, nullptr);
+}
+
+void NcursesScreen::glyph(int x, int y, char32_t ch, Style style) {
+  // Off the screen, or the bottom-right cell (writing it would scroll).
+  if (x < 0 || y < 0 || x >= COLS || y >= LINES || (y == LINES - 1 && x == COLS - 1)) return;
+  const auto look = curses_look(style, colour_);
+  if (ch < 0x80 || symbols_ == GraphSymbols::Ascii) {
+    attr_set(static_cast<attr_t>(look.attributes), look.pair, nullptr);
+    mvaddch(y, x, ch >= 0x20 && ch < 0x7F ? static_cast<chtype>(ch) : static_cast<chtype>('?'));
+  } else {  // a wide character through ncursesw (the locale is UTF-8: choose_graph_symbols)
+    const wchar_t text[2] = {static_cast<wchar_t>(ch), L'\0'};
+    cchar_t cell;
+    setcchar(&cell, text, static_cast<attr_t>(look.attributes), look.pair, nullptr);
+    mvadd_wch(y, x, &cell);
+  }
   attr_set(A_NORMAL, 0, nullptr);
 }
 

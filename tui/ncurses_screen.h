@@ -18,12 +18,15 @@ CursesLook curses_look(const Style& style, bool colour);
 
 class NcursesScreen : public Screen {
  public:
-  /// Call after the terminal is in curses mode (terminal.h); sets up the colour pairs.
-  NcursesScreen();
+  /// Call after the terminal is in curses mode (terminal.h); sets up the colour pairs. `symbols`:
+  /// how graphs are drawn (choose_graph_symbols: braille needs a UTF-8 locale and ncursesw).
+  explicit NcursesScreen(GraphSymbols symbols);
   int width() const override;
   int height() const override;
   void clear() override;
   void text(int x, int y, std::string_view text, Style style = {}) override;
+  void glyph(int x, int y, char32_t ch, Style style = {}) override;
+  GraphSymbols graph_symbols() const override { return symbols_; }
   void box(const Rect& r, std::string_view title, Style style = {}) override;
   void flush() override;
 
@@ -33,6 +36,7 @@ class NcursesScreen : public Screen {
 
  private:
   bool colour_ = false;
+  GraphSymbols symbols_;
 };
 
 }  // namespace hitl::tui

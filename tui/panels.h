@@ -19,6 +19,8 @@ void draw_messages(Screen& screen, const Rect& r, const std::vector<LogLine>& li
 /// How many rows `lines` take wrapped to `width` (the panel's inside).
 int message_row_count(const std::vector<LogLine>& lines, int width);
 void draw_link(Screen& screen, const Rect& r, const std::string& partner, Health health, const std::vector<LinkField>& fields);
+/// The rolling graphs (graph.h, graph_history.h).
+void draw_graphs(Screen& screen, const Rect& r, const GraphsPanel& panel);
 
 void draw_latency(Screen& screen, const Rect& r, const LatencyPanel& panel);
 /// "n/a: <reason>", wrapped inside a panel's box (for any panel a source cannot fill).

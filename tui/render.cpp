@@ -161,6 +161,7 @@ void render(Screen& screen, const DashboardModel& model, const Interaction& inte
   if (!l.ekf.empty() && model.ekf) draw_ekf(screen, l.ekf, *model.ekf);
   if (!l.link.empty()) draw_link(screen, l.link, model.link_partner, model.link_health, model.link);
   if (!l.latency.empty() && model.latency) draw_latency(screen, l.latency, *model.latency);
+  if (!l.graphs.empty() && model.graphs) draw_graphs(screen, l.graphs, *model.graphs);
   if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages, interaction.messages_top);
   draw_footer(screen, l.footer, model, interaction);
   if (interaction.mode == Interaction::Mode::Help) draw_help(screen, model.keys);

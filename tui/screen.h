@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "tui/graph.h"
+
 namespace hitl::tui {
 
 /// Colours by meaning; each screen maps them to what the terminal can show.
@@ -41,6 +43,10 @@ class Screen {
   virtual void clear() = 0;
   /// Writes printable ASCII text at (x, y), clipped to the screen; other bytes show as '?'.
   virtual void text(int x, int y, std::string_view text, Style style = {}) = 0;
+  /// One cell that may be outside ASCII (a graph's braille, graph.h), clipped to the screen.
+  virtual void glyph(int x, int y, char32_t ch, Style style = {}) = 0;
+  /// How graphs are drawn here: braille where the terminal shows UTF-8, else ASCII.
+  virtual GraphSymbols graph_symbols() const = 0;
   /// A box around `r` with `title` in its top edge.
   virtual void box(const Rect& r, std::string_view title, Style style = {}) = 0;
   /// Shows the frame.

@@ -1,8 +1,10 @@
 #include "tui/sim_dashboard.h"
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 
+#include "base/common/clock.h"
 #include "base/contract/data_rates.h"
 #include "engine/faults/fault_spec.h"
 #include "engine/vehicle/patient_link.h"
@@ -95,6 +97,8 @@ void SimDashboard::perform(Action action, const std::string& argument) {
       vehicle::FlyTrajectoryOptions options;
       options.mode = dashboard_.trajectory_mode;
       options.truth_sysid = config_.sysid;
+      options.on_tracking_error = [this](double e) { tracking_error_m_.store(e); };
+      tracking_error_m_.store(std::numeric_limits<double>::quiet_NaN());
       auto link = vehicle::session_client_options(config_.clients_port, 5.0);
       auto started = trajectory_.start(
           link, *dashboard_.trajectory, options, [this](const std::string& text) { log_.add(Severity::Info, text); },
@@ -221,6 +225,8 @@ DashboardModel SimDashboard::collect() {
       loop_latency_field("loop p50", s.loop_latency, s.loop_latency.latency.p50_us),
       loop_latency_field("loop max", s.loop_latency, s.loop_latency.latency.max_us),
   };
+  graphs_.add(monotonic_s(), m, m.trajectory_running ? std::optional<double>(tracking_error_m_.load()) : std::nullopt);
+  m.graphs = graphs_.panel();
   return m;
 }
 

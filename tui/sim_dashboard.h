@@ -16,6 +16,7 @@
 #include "engine/vehicle/trajectory_worker.h"
 #include "tui/board_clients.h"
 #include "tui/dashboard.h"
+#include "tui/graph_history.h"
 #include "tui/message_log.h"
 
 namespace hitl::tui {
@@ -54,6 +55,8 @@ class SimDashboard : public DashboardSource, public DashboardActions, public hil
   hil::SessionConfig config_;
   SimDashboardConfig dashboard_;
   MessageLog log_;
+  GraphHistory graphs_;  ///< the last 60 s for the graphs (collect() is the only user)
+  std::atomic<double> tracking_error_m_{0};  ///< the flying trajectory's latest, for the graphs
   BoardClients board_;
   vehicle::TrajectoryWorker trajectory_;
   mutable std::mutex finished_mutex_;

@@ -3,11 +3,13 @@
 #include <curses.h>
 #include <term.h>
 #include <termios.h>
+#include <langinfo.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
+#include <clocale>
 #include <cstring>
 
 namespace hitl::tui {
@@ -83,6 +85,10 @@ Expected<std::unique_ptr<Terminal>> Terminal::open() {
   if (auto usable = terminal_usable(); !usable) return usable.error();
   g_restore.have_saved = ::tcgetattr(STDIN_FILENO, &g_restore.saved) == 0;
   std::unique_ptr<Terminal> t(new Terminal());
+  // The user's character set, so ncursesw can write braille: LC_CTYPE only (LC_NUMERIC would
+  // turn every "%.1f" on the screen and in the JSON into the locale's decimal comma).
+  std::setlocale(LC_CTYPE, "");
+  const bool utf8_locale = std::strcmp(nl_langinfo(CODESET), "UTF-8") == 0;
   // newterm, not initscr: a terminal ncurses does not know is an error here, not an exit().
   SCREEN* s = newterm(nullptr, stdout, stdin);
   if (s == nullptr) return Error{std::string("ncurses does not know the terminal type '") + std::getenv("TERM") + "'"};
@@ -101,7 +107,7 @@ Expected<std::unique_ptr<Terminal>> Terminal::open() {
   curs_set(0);
   for (int sig : kStopSignals) install(sig, on_stop_signal);
   for (int sig : kFatalSignals) install(sig, on_fatal_signal);
-  t->screen_ = std::make_unique<NcursesScreen>();
+  t->screen_ = std::make_unique<NcursesScreen>(choose_graph_symbols(std::getenv("HITL_GRAPH_SYMBOL"), utf8_locale, std::getenv("TERM")));
   return t;
 }
 

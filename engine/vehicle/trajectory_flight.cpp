@@ -160,6 +160,7 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
     for (const auto& c : out.commands) link.send(c);
     if (out.rc) link.send(*out.rc);
     if (out.event) note(*out.event);
+    if (options.on_tracking_error && out.tracking_error_m) options.on_tracking_error(*out.tracking_error_m);
     if (record && out.reference) record->setpoint(static_cast<uint32_t>(t_s * 1000), *out.reference, out.tracking_error_m);
     if (record && out.event) record->note(flight->state() == PilotState::Failed ? Severity::Error : Severity::Info, *out.event);
   }

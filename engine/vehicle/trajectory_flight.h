@@ -86,6 +86,8 @@ struct FlyTrajectoryOptions {
   /// setpoints, errors and states (pilot_record.h) as `record_sysid`.
   PilotRecord::Sink record;
   uint8_t record_sysid = mavlink::kGcsSystemId;
+  /// Each scored tracking error as it is computed (the dashboard's graph), on the flight's thread.
+  std::function<void(double tracking_error_m)> on_tracking_error;
 };
 
 /// What the flight says as it goes: a state change ("trajectory: TAKEOFF (armed)") or a note

@@ -105,6 +105,66 @@ TEST(TuiE2E, ArmTakeOffAndWatchTheDashboard) {
   setup.board.wait(10s);
 }
 
+/// How many braille cells (U+2800..U+28FF, UTF-8 E2 A0..A3 xx) `screen` holds.
+int braille_cells(const std::string& screen) {
+  int n = 0;
+  for (std::size_t i = 0; i + 2 < screen.size(); ++i)
+    if (static_cast<unsigned char>(screen[i]) == 0xE2 && (static_cast<unsigned char>(screen[i + 1]) & 0xFC) == 0xA0) ++n;
+  return n;
+}
+
+// With room to spare the dashboard draws its graphs (the last 60 s): braille in a UTF-8 locale,
+// ASCII with HITL_GRAPH_SYMBOL=ascii; at 80x24 there are none.
+TEST(TuiE2E, GraphsAt200x60InBrailleAndAscii) {
+  const std::string tmux_bin = tmux_path();
+  if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  SimAgainstTarget setup;
+  std::string s;
+  {
+    Tmux tmux(tmux_bin, "tui-graphs");
+    tmux.start("LC_ALL=C.UTF-8 " + setup.sim_command("--lockstep --speed 1"), 200, 60);
+    ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Graphs, last 60 s") != std::string::npos; }, 20s, &s)) << s;
+    // The rates' graphs fill in from the right within a few frames.
+    EXPECT_TRUE(tmux.until([](const std::string& x) { return braille_cells(x) >= 10; }, 20s, &s)) << s;
+    EXPECT_NE(s.find("Altitude m: truth"), std::string::npos) << s;
+    EXPECT_TRUE(std::regex_search(s, std::regex(R"(IMU +\S+ +[0-9.]+/250\.0 Hz)"))) << s;
+    tmux.keys({"q"});
+    ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
+    EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
+  }
+  {
+    Tmux tmux(tmux_bin, "tui-graphs-ascii");
+    tmux.start("LC_ALL=C.UTF-8 HITL_GRAPH_SYMBOL=ascii " + setup.sim_command("--lockstep --speed 1"), 200, 60);
+    ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Graphs, last 60 s") != std::string::npos; }, 20s, &s)) << s;
+    EXPECT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(IMU +[-_']+ +[0-9.]+/250\.0 Hz)")); }, 20s, &s)) << s;
+    EXPECT_EQ(braille_cells(s), 0) << s;
+    tmux.keys({"q"});
+    ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
+  }
+  setup.board.signal(SIGINT);
+  setup.board.wait(10s);
+}
+
+// While `f` flies the trajectory, the graphs add the tracking error the flight is scored on.
+TEST(TuiE2E, GraphsShowTheTrackingErrorWhileATrajectoryFlies) {
+  const std::string tmux_bin = tmux_path();
+  if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  SimAgainstTarget setup;
+  const std::string trajectory = std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json";
+  Tmux tmux(tmux_bin, "tui-graphs-fly");
+  tmux.start("LC_ALL=C.UTF-8 " + setup.sim_command("--lockstep --speed 5 -t " + shell_quoted(trajectory)), 200, 60);
+  std::string s;
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(%\s+ready)")); }, 90s, &s)) << s;
+  EXPECT_EQ(s.find("Tracking error m"), std::string::npos) << s;  // nothing flown yet
+  tmux.keys({"f"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(Tracking error m: now \d+\.\d\d)")); }, 90s, &s)) << s;
+  EXPECT_GT(braille_cells(s), 10) << s;
+  tmux.keys({"q"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
+  setup.board.signal(SIGINT);
+  setup.board.wait(10s);
+}
+
 /// The processes `pid` started (its threads' children), from /proc.
 std::vector<std::string> children_of(const std::string& pid) {
   std::vector<std::string> out;
