@@ -84,7 +84,7 @@ void check_frame(const Frame& f, Seen& seen, bool must_be_signed) {
     const uint8_t crc_extra = f.desc != nullptr ? f.desc->crc_extra : f.check->crc_extra;
     const uint16_t crc = crc_accumulate(crc_extra, crc_x25(std::span<const uint8_t>(f.raw.data() + 1, header - 1 + f.payload_len)));
     FUZZ_CHECK(crc == f.checksum);
-    FUZZ_CHECK(f.desc->id == f.msgid);
+    FUZZ_CHECK((f.desc != nullptr ? f.desc->id : f.check->id) == f.msgid);
   }
 
   const std::string text = format_message(f);
