@@ -164,8 +164,10 @@ void ClientServices::send_doctor_status(uint32_t boot_ms, const SessionStatus& s
   named_float(kStatusActuatorRateName, status.actuator_rate_hz);
   named_int(kStatusActuatorFlagsName, heard ? actuators.last_flags() : -1);
   named_int(kStatusActuatorArmedName, heard ? (actuators.armed() ? 1 : 0) : -1);
-  named_int(kStatusLoopLatencyP99Name,
-            status.loop_latency_p99_us ? static_cast<int32_t>(std::min(*status.loop_latency_p99_us, 2e9)) : -1);
+  auto latency_us = [](const std::optional<double>& us) { return us ? static_cast<int32_t>(std::min(*us, 2e9)) : -1; };
+  named_int(kStatusLoopLatencyP99Name, latency_us(status.loop_latency_p99_us));
+  named_int(kStatusLoopLatencyP50Name, latency_us(status.loop_latency_p50_us));
+  named_int(kStatusLoopLatencyMaxName, latency_us(status.loop_latency_max_us));
 }
 
 void ClientServices::send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s) {

@@ -34,6 +34,8 @@ struct SessionStatus {
   uint64_t late_ticks = 0;
   double actuator_rate_hz = 0;  ///< HIL_ACTUATOR_CONTROLS over the last window (0 when stale)
   std::optional<double> loop_latency_p99_us;  ///< loop_latency.h; none before the first answer
+  std::optional<double> loop_latency_p50_us;  ///< the same
+  std::optional<double> loop_latency_max_us;  ///< the same
 };
 
 class ClientServices {

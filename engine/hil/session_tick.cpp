@@ -204,7 +204,11 @@ SessionStatus Session::Impl::status(double now_s) const {
   s.paused = clock.paused();
   s.recent_real_time_factor = recent_rtf;
   s.late_ticks = pacer->stats().late;
-  s.loop_latency_p99_us = loop_latency->p99_us();
+  if (const auto latency = loop_latency->summary().latency; latency.count > 0) {
+    s.loop_latency_p50_us = latency.p50_us;
+    s.loop_latency_p99_us = latency.p99_us;
+    s.loop_latency_max_us = latency.max_us;
+  }
   for (const auto& p : paths->stats(now_s))
     if (!p.outgoing && p.stats.since_last_s >= 0 && p.stats.since_last_s < telemetry::kStaleAfter_s)
       s.actuator_rate_hz = p.stats.rate_hz;
