@@ -23,7 +23,8 @@ Status Session::Impl::step(EventSink& events) {
   // Drain: the flight stack's link and the client port; then what clients are owed this step.
   const double now_s = monotonic_s();
   drain(now_s);
-  if (services->status_due(now_s)) services->send_status(now_s, start_wall_s, status(now_s));  // once a second
+  if (services->status_due(now_s, sim_time_s()))  // once a second (of wall time; the loop latency's also of simulated time)
+    services->send_status(now_s, sim_time_s(), start_wall_s, status(now_s));
   services->serve(events);
   say_record_failure(events);
   if (take_controls(events)) return Ok{};  // paused: the model holds, nothing is sent

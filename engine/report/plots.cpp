@@ -149,7 +149,8 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     add_if(p, thinned("p50", SeriesStyle::Plain, l.p50_us.t_s, ms(l.p50_us), n));
     add_if(p, thinned("p99", SeriesStyle::Plain, l.p99_us.t_s, ms(l.p99_us), n));
     add_if(p, thinned("max", SeriesStyle::Plain, l.max_us.t_s, ms(l.max_us), n));
-    p.note = "over the session so far, as its status said each second (NAMED_VALUE_INT sim_lat50, sim_lat99, sim_latmx)";
+    p.note = "over the session so far, as its status said each second of wall and of simulated time (NAMED_VALUE_INT "
+             "sim_lat50, sim_lat99, sim_latmx)";
     push(std::move(p));
   }
   {
