@@ -117,11 +117,12 @@ void ClientServices::announce(Severity severity, std::string_view text) {
 
 /// HEARTBEAT from the simulator's sysid (STANDBY while paused) and NAMED_VALUE_* "sim_rtf" (recent
 /// real-time factor), "sim_late" (late ticks), "sim_pause" (0/1), then what hitl doctor reads.
-void ClientServices::send_status(double now_s, double start_wall_s, const SessionStatus& status) {
-  if ((!clients_ && !recording_.active()) || now_s < next_status_wall_s_) return;
+void ClientServices::send_status(double now_s, double sim_s, double start_wall_s, const SessionStatus& status) {
+  if (!status_due(now_s, sim_s)) return;
+  const auto boot_ms = static_cast<uint32_t>((now_s - start_wall_s) * 1000.0);
+  if (now_s < next_status_wall_s_) return send_loop_latency(boot_ms, sim_s, status);  // a simulated second only
   next_status_wall_s_ = now_s + 1.0;
   broadcast_own(mavlink::simulator_heartbeat(status.paused ? mavlink::MavState::Standby : mavlink::MavState::Active));
-  const auto boot_ms = static_cast<uint32_t>((now_s - start_wall_s) * 1000.0);
   mavlink::msg::NamedValueFloat rtf;
   rtf.time_boot_ms = boot_ms;
   mavlink::set_text(rtf.name, kStatusRtfName);
@@ -138,6 +139,7 @@ void ClientServices::send_status(double now_s, double start_wall_s, const Sessio
   pause.value = status.paused ? 1 : 0;
   broadcast_own(pause);
   send_doctor_status(boot_ms, status);
+  send_loop_latency(boot_ms, sim_s, status);
 }
 
 /// What `hitl doctor` reads beside the above (session_config.h): the requested pace, lockstep, and
@@ -164,8 +166,21 @@ void ClientServices::send_doctor_status(uint32_t boot_ms, const SessionStatus& s
   named_float(kStatusActuatorRateName, status.actuator_rate_hz);
   named_int(kStatusActuatorFlagsName, heard ? actuators.last_flags() : -1);
   named_int(kStatusActuatorArmedName, heard ? (actuators.armed() ? 1 : 0) : -1);
-  named_int(kStatusLoopLatencyP99Name,
-            status.loop_latency_p99_us ? static_cast<int32_t>(std::min(*status.loop_latency_p99_us, 2e9)) : -1);
+}
+
+/// NAMED_VALUE_INT sim_lat50, sim_lat99 (hitl doctor's), sim_latmx: us so far, -1 before an answer.
+void ClientServices::send_loop_latency(uint32_t boot_ms, double sim_s, const SessionStatus& status) {
+  next_latency_sim_s_ = sim_s + 1.0;
+  auto named_int = [&](std::string_view name, const std::optional<double>& us) {
+    mavlink::msg::NamedValueInt m;
+    m.time_boot_ms = boot_ms;
+    mavlink::set_text(m.name, name);
+    m.value = us ? static_cast<int32_t>(std::min(*us, 2e9)) : -1;
+    broadcast_own(m);
+  };
+  named_int(kStatusLoopLatencyP50Name, status.loop_latency_p50_us);
+  named_int(kStatusLoopLatencyP99Name, status.loop_latency_p99_us);
+  named_int(kStatusLoopLatencyMaxName, status.loop_latency_max_us);
 }
 
 void ClientServices::send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s) {

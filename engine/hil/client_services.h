@@ -34,6 +34,8 @@ struct SessionStatus {
   uint64_t late_ticks = 0;
   double actuator_rate_hz = 0;  ///< HIL_ACTUATOR_CONTROLS over the last window (0 when stale)
   std::optional<double> loop_latency_p99_us;  ///< loop_latency.h; none before the first answer
+  std::optional<double> loop_latency_p50_us;  ///< the same
+  std::optional<double> loop_latency_max_us;  ///< the same
 };
 
 class ClientServices {
@@ -49,15 +51,17 @@ class ClientServices {
   /// Sends what the step queued for clients and says once when a bound was hit.
   void serve(EventSink& events);
 
-  /// True when send_status() would send (clients are on or a recording runs, and a second has
-  /// passed): the caller builds the status only then, not every step.
-  bool status_due(double now_s) const {
-    return (clients_.has_value() || recording_.active()) && now_s >= next_status_wall_s_;
+  /// True when send_status() would send (clients are on or a recording runs, and a second of wall
+  /// or, for the loop latency, of simulated time has passed): the caller builds the status only then.
+  bool status_due(double now_s, double sim_s) const {
+    return (clients_.has_value() || recording_.active()) && (now_s >= next_status_wall_s_ || sim_s >= next_latency_sim_s_);
   }
   /// The session's own frames below (status, truth, announcements) go to the clients and into the
   /// recording, so that a recording holds the truth and the session's status (docs/report.md).
   /// Once a second of wall time: HEARTBEAT (STANDBY while paused) and the NAMED_VALUE_* status.
-  void send_status(double now_s, double start_wall_s, const SessionStatus& status);
+  /// The loop latency's (sim_lat50/99/mx) also once a second of simulated time, so that a session
+  /// faster than real time (hitl demo: 46 s in half a second) records it each simulated second.
+  void send_status(double now_s, double sim_s, double start_wall_s, const SessionStatus& status);
   /// A STATUSTEXT from the simulator's identity (a fault started or ended): to every client, where
   /// a ground station shows it, and into the recording, so that a recording says what was injected
   /// when. Texts longer than STATUSTEXT's 50 characters are cut.
@@ -94,6 +98,7 @@ class ClientServices {
   template <class M>
   void broadcast_own(const M& message);
   void send_doctor_status(uint32_t boot_ms, const SessionStatus& status);
+  void send_loop_latency(uint32_t boot_ms, double sim_s, const SessionStatus& status);
   /// One ODOMETRY frame onto the VIO link (recorded as it leaves, counted).
   void send_vio_frame(std::span<const uint8_t> frame, bool counted);
 
@@ -111,6 +116,7 @@ class ClientServices {
   mavlink::FrameEncoder vio_encoder_;  ///< the VIO link's own sequence
   LinkFaults vio_faults_;
   double next_status_wall_s_ = 0;
+  double next_latency_sim_s_ = 0;
   double next_vio_s_ = 0;
   uint64_t vio_k_ = 0;
   double next_truth_s_ = 0;

@@ -23,7 +23,8 @@ Status Session::Impl::step(EventSink& events) {
   // Drain: the flight stack's link and the client port; then what clients are owed this step.
   const double now_s = monotonic_s();
   drain(now_s);
-  if (services->status_due(now_s)) services->send_status(now_s, start_wall_s, status(now_s));  // once a second
+  if (services->status_due(now_s, sim_time_s()))  // once a second (of wall time; the loop latency's also of simulated time)
+    services->send_status(now_s, sim_time_s(), start_wall_s, status(now_s));
   services->serve(events);
   say_record_failure(events);
   if (take_controls(events)) return Ok{};  // paused: the model holds, nothing is sent
@@ -204,7 +205,11 @@ SessionStatus Session::Impl::status(double now_s) const {
   s.paused = clock.paused();
   s.recent_real_time_factor = recent_rtf;
   s.late_ticks = pacer->stats().late;
-  s.loop_latency_p99_us = loop_latency->p99_us();
+  if (const auto latency = loop_latency->summary().latency; latency.count > 0) {
+    s.loop_latency_p50_us = latency.p50_us;
+    s.loop_latency_p99_us = latency.p99_us;
+    s.loop_latency_max_us = latency.max_us;
+  }
   for (const auto& p : paths->stats(now_s))
     if (!p.outgoing && p.stats.since_last_s >= 0 && p.stats.since_last_s < telemetry::kStaleAfter_s)
       s.actuator_rate_hz = p.stats.rate_hz;

@@ -235,6 +235,11 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           const auto name = mavlink::text_of(nv.name);
           if (name == kStatusLateName) log.late_ticks = nv.value;
           if (name == kStatusLockstepName) log.lockstep = nv.value != 0;
+          if (name == kStatusLoopLatencyP99Name) log.loop_latency.reported = true;
+          for (const auto& [series_name, series] : {std::pair{kStatusLoopLatencyP50Name, &log.loop_latency.p50_us},
+                                                    std::pair{kStatusLoopLatencyP99Name, &log.loop_latency.p99_us},
+                                                    std::pair{kStatusLoopLatencyMaxName, &log.loop_latency.max_us}})
+            if (name == series_name && nv.value >= 0) add(*series, t_s, nv.value);
           break;
         }
         case msg::LocalPositionNed::kId:
@@ -315,7 +320,13 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   lacks(log.ekf_ratios[0].size() == 0, "EKF test ratios (ESTIMATOR_STATUS)");
   lacks(log.paths.empty(), "the HIL data paths (HIL_SENSOR, HIL_GPS, ODOMETRY, HIL_ACTUATOR_CONTROLS)");
   lacks(!log.late_ticks, "the session's status (NAMED_VALUE_INT sim_late: late ticks)");
-  lacks(true, "the loop latency (not measured by hitl yet)");
+  if (!log.late_ticks && !log.loop_latency.reported)
+    lacks(true, "the loop latency (no hitl session status in this log: hitl sim --record writes it once a second)");
+  else if (!log.loop_latency.reported)
+    lacks(true, "the loop latency (NAMED_VALUE_INT sim_lat99 in the session's status: the hitl sim that wrote this log "
+                "did not record it; newer ones do)");
+  else
+    lacks(log.loop_latency.p99_us.size() == 0, "the loop latency (no HIL_SENSOR was answered: sim_lat99 stayed -1)");
   if (cut) log.missing.push_back("records after the first " + std::to_string(limits.max_records) + " (the log was cut there)");
   if (events_dropped > 0) log.missing.push_back(std::to_string(events_dropped) + " events after the first " + std::to_string(limits.max_events));
   return log;

@@ -57,6 +57,16 @@ struct TrackingSummary {
   double max_m = 0;
 };
 
+/// The loop latency (HIL_SENSOR sent -> its HIL_ACTUATOR_CONTROLS received, wall time) as the
+/// session's status said it each second: over the session so far, microseconds; only once something
+/// was answered (the status says -1 before).
+struct LoopLatencySeries {
+  Series p50_us;  ///< NAMED_VALUE_INT sim_lat50
+  Series p99_us;  ///< sim_lat99
+  Series max_us;  ///< sim_latmx
+  bool reported = false;  ///< the status carried sim_lat99 at all (-1 included)
+};
+
 struct FlightLog {
   std::string path;
   uint64_t records = 0;         ///< tlog records read
@@ -82,6 +92,7 @@ struct FlightLog {
   std::vector<LogEvent> events;
   std::optional<int64_t> late_ticks;      ///< the session's last "sim_late"
   std::optional<bool> lockstep;           ///< the session's "sim_lockst"
+  LoopLatencySeries loop_latency;
   std::vector<std::string> missing;       ///< what a report cannot draw from this log, in words
 };
 

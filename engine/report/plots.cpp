@@ -138,6 +138,22 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     push(std::move(j));
   }
   {
+    Plot p{"loop-latency", "Loop latency (HIL_SENSOR sent to its HIL_ACTUATOR_CONTROLS received)", time_label,
+           "wall-clock latency (ms)", {}, true, false, ""};
+    auto ms = [](const Series& s) {
+      std::vector<double> v(s.value);
+      for (auto& x : v) x *= 1e-3;
+      return v;
+    };
+    const auto& l = log.loop_latency;
+    add_if(p, thinned("p50", SeriesStyle::Plain, l.p50_us.t_s, ms(l.p50_us), n));
+    add_if(p, thinned("p99", SeriesStyle::Plain, l.p99_us.t_s, ms(l.p99_us), n));
+    add_if(p, thinned("max", SeriesStyle::Plain, l.max_us.t_s, ms(l.max_us), n));
+    p.note = "over the session so far, as its status said each second of wall and of simulated time (NAMED_VALUE_INT "
+             "sim_lat50, sim_lat99, sim_latmx)";
+    push(std::move(p));
+  }
+  {
     Plot p{"ekf", "EKF test ratios (ESTIMATOR_STATUS)", time_label, "test ratio (1: rejected)", {}, true, false, ""};
     for (std::size_t k = 0; k < log.ekf_ratios.size(); ++k)
       add_if(p, thinned(kEkfRatioNames[k], SeriesStyle::Plain, log.ekf_ratios[k].t_s, log.ekf_ratios[k].value, n));

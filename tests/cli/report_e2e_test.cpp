@@ -117,6 +117,7 @@ std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& ht
 /// Counted straight from the recording with the codec, not with the report's reader.
 struct RecordingCounts {
   std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0;
+  std::size_t latency_p50 = 0, latency_p99 = 0, latency_max = 0;  ///< the session's status once something was answered (not -1)
 };
 
 RecordingCounts count_recording(const std::string& path) {
@@ -136,6 +137,12 @@ RecordingCounts count_recording(const std::string& path) {
       if (!sim && f.is<msg::LocalPositionNed>()) ++c.estimate;
       if (!sim && f.is<msg::Attitude>()) ++c.attitude;
       if (!sim && f.is<msg::HilActuatorControls>()) ++c.actuators;
+      if (sim && f.is<msg::NamedValueInt>() && f.as<msg::NamedValueInt>().value >= 0) {
+        const auto name = mavlink::text_of(f.as<msg::NamedValueInt>().name);
+        c.latency_p50 += name == kStatusLoopLatencyP50Name ? 1 : 0;
+        c.latency_p99 += name == kStatusLoopLatencyP99Name ? 1 : 0;
+        c.latency_max += name == kStatusLoopLatencyMaxName ? 1 : 0;
+      }
     });
   }
   return c;
@@ -188,7 +195,7 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   const auto counts = count_recording(tlog);
   const auto figures = figures_of(page);
   for (const char* id : {"top-view", "altitude", "tracking-error", "attitude-roll", "attitude-pitch", "attitude-yaw", "motors",
-                         "rates", "jitter", "ekf"})
+                         "rates", "jitter", "loop-latency", "ekf"})
     EXPECT_TRUE(figures.count(id)) << "no figure " << id;
   for (const auto& [id, series] : figures) {
     for (const auto& s : series) {
@@ -212,6 +219,12 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   EXPECT_EQ(counts.tracking, trajectory["samples"].get<std::size_t>());
   EXPECT_EQ(samples("attitude-roll", "estimate"), counts.attitude);
   EXPECT_EQ(samples("motors", "motor 1"), counts.actuators);
+  // The demo is lockstep against hitl target: its loop latency is measured and recorded each second.
+  EXPECT_GT(counts.latency_p99, 10u);
+  EXPECT_EQ(samples("loop-latency", "p50"), counts.latency_p50);
+  EXPECT_EQ(samples("loop-latency", "p99"), counts.latency_p99);
+  EXPECT_EQ(samples("loop-latency", "max"), counts.latency_max);
+  EXPECT_EQ(page.find("the loop latency"), std::string::npos) << "the demo's log has it";
 
   // Chromium draws it, and what it draws is not a blank page.
   const std::string chromium = test::find_program("chromium");
@@ -314,6 +327,8 @@ TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
   const std::string page = read_file(dir + "/plain.html");
   EXPECT_NE(page.find("What this log lacks"), std::string::npos);
   EXPECT_NE(page.find("the simulator's clock"), std::string::npos);
+  EXPECT_NE(page.find("the loop latency (no hitl session status in this log"), std::string::npos);
+  EXPECT_FALSE(figures_of(page).count("loop-latency"));
   const auto figures = figures_of(page);
   // Without sensor input the board has an attitude and EKF test ratios, but no position.
   EXPECT_TRUE(figures.count("attitude-roll")) << "the board's ATTITUDE is drawn";

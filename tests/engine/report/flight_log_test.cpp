@@ -2,7 +2,9 @@
 // whom, the tracking summary, events, and what a plain log lacks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "base/contract/session_status.h"
 #include "base/mavlink/enums.h"
@@ -11,6 +13,7 @@
 #include "base/mavlink/text_field.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/report/flight_log.h"
+#include "engine/report/plots.h"
 
 namespace hitl::report {
 namespace {
@@ -42,6 +45,13 @@ msg::HilSensor sensor_at(uint64_t sim_us) {
 
 msg::NamedValueFloat named(std::string_view name, float v) {
   msg::NamedValueFloat m;
+  mavlink::set_text(m.name, name);
+  m.value = v;
+  return m;
+}
+
+msg::NamedValueInt named_int(std::string_view name, int32_t v) {
+  msg::NamedValueInt m;
   mavlink::set_text(m.name, name);
   m.value = v;
   return m;
@@ -173,6 +183,82 @@ TEST(FlightLog, APlainLogGivesWhatItHasAndSaysWhatItLacks) {
   EXPECT_TRUE(lacks("setpoints"));
   EXPECT_TRUE(lacks("motor commands"));
   EXPECT_FALSE(lacks("the vehicle's position estimate"));
+  EXPECT_TRUE(lacks("the loop latency (no hitl session status in this log"));
+}
+
+bool lacks_starting(const FlightLog& log, const std::string& start) {
+  for (const auto& m : log.missing)
+    if (m.rfind(start, 0) == 0) return true;
+  return false;
+}
+
+/// 3 s of HIL_SENSOR at 250 Hz with the session's status each second (sim_late, and the loop
+/// latency's p50/p99/max so far in us: -1 before the first answer) when `latency` is set.
+void write_session(const std::string& path, bool latency) {
+  LogWriter w(path);
+  for (uint64_t k = 0; k <= 750; ++k) {
+    const uint64_t t = k * 4000;
+    w.add(t, kSimulatorSystemId, 1, sensor_at(t));
+    if (k % 250 != 0) continue;
+    const int32_t s = static_cast<int32_t>(k / 250);  // 0, 1, 2, 3
+    w.add(t, kSimulatorSystemId, 1, named_int(kStatusLateName, 0));
+    if (!latency) continue;
+    w.add(t, kSimulatorSystemId, 1, named_int(kStatusLoopLatencyP50Name, s == 0 ? -1 : 500 * s));
+    w.add(t, kSimulatorSystemId, 1, named_int(kStatusLoopLatencyP99Name, s == 0 ? -1 : 1000 * s));
+    w.add(t, kSimulatorSystemId, 1, named_int(kStatusLoopLatencyMaxName, s == 0 ? -1 : 3000 * s));
+    w.add(t, 1, 1, named_int(kStatusLoopLatencyP99Name, 7));  // the vehicle's own value of that name: not the session's
+  }
+  w.close();
+}
+
+TEST(FlightLog, LoopLatencyIsTheSessionsStatusEachSecondAndIsDrawnInMilliseconds) {
+  const std::string path = ::testing::TempDir() + "latency.tlog";
+  write_session(path, true);
+  auto log = read_flight_log(path);
+  ASSERT_TRUE(log) << log.error().message;
+  // -1 (nothing answered yet) is not a latency: three points, at 1, 2 and 3 s.
+  ASSERT_EQ(log->loop_latency.p99_us.size(), 3u);
+  EXPECT_EQ(log->loop_latency.p50_us.size(), 3u);
+  EXPECT_EQ(log->loop_latency.max_us.size(), 3u);
+  EXPECT_NEAR(log->loop_latency.p99_us.t_s[0], 1.0, 1e-9);
+  EXPECT_DOUBLE_EQ(log->loop_latency.p99_us.value[2], 3000.0);
+  EXPECT_DOUBLE_EQ(log->loop_latency.max_us.value[2], 9000.0);
+  EXPECT_FALSE(lacks_starting(*log, "the loop latency"));
+
+  const auto plots = plots_of(*log);
+  const auto it = std::find_if(plots.begin(), plots.end(), [](const Plot& p) { return p.id == "loop-latency"; });
+  ASSERT_NE(it, plots.end());
+  EXPECT_TRUE(it->time_axis);
+  ASSERT_EQ(it->series.size(), 3u);
+  EXPECT_EQ(it->series[0].title, "p50");
+  EXPECT_EQ(it->series[1].title, "p99");
+  EXPECT_EQ(it->series[2].title, "max");
+  EXPECT_EQ(it->series[1].samples, 3u);
+  EXPECT_DOUBLE_EQ(it->series[1].y[2], 3.0);  // ms
+}
+
+TEST(FlightLog, ASessionWithoutLoopLatencySaysWhy) {
+  // An older hitl sim: the session's status without sim_lat99.
+  const std::string older = ::testing::TempDir() + "older.tlog";
+  write_session(older, false);
+  auto log = read_flight_log(older);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_TRUE(lacks_starting(*log, "the loop latency (NAMED_VALUE_INT sim_lat99"));
+  for (const auto& p : plots_of(*log)) EXPECT_NE(p.id, "loop-latency");
+
+  // Nothing ever answered: sim_lat99 stayed -1.
+  const std::string unanswered = ::testing::TempDir() + "unanswered.tlog";
+  {
+    LogWriter w(unanswered);
+    for (uint64_t k = 0; k <= 500; ++k) {
+      w.add(k * 4000, kSimulatorSystemId, 1, sensor_at(k * 4000));
+      if (k % 250 == 0) w.add(k * 4000, kSimulatorSystemId, 1, named_int(kStatusLoopLatencyP99Name, -1));
+    }
+    w.close();
+  }
+  log = read_flight_log(unanswered);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_TRUE(lacks_starting(*log, "the loop latency (no HIL_SENSOR was answered"));
 }
 
 TEST(FlightLog, AFileWithoutFramesIsBadInputNamed) {
