@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "tests/support/json_lines.h"
+#include "tests/support/lockstep_session.h"
 #include "tests/support/process.h"
 
 namespace hitl {
@@ -143,17 +144,9 @@ TEST(OperateE2E, ShellExitStatusFollowsTheBoardsCommand) {
 }
 
 TEST(OperateE2E, FlyTrajectoryFromTheHostThroughTheSession) {
-  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port();
-  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
-                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
-  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
-  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
-                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", std::to_string(clients), "--lockstep",
-                     "--speed", "5", "--duration", "300"});
-  ASSERT_TRUE(sim.wait_for_stderr("clients on", 10s)) << sim.err();
-  auto r = test::run_hitl({"--json", "fly", "--session-port", std::to_string(clients), "-i", "127.0.0.1", "--port",
-                           std::to_string(test::free_udp_port()), "--local-port", std::to_string(test::free_udp_port()),
-                           "trajectory", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json"},
+  test::LockstepSessionWithClients session;
+  ASSERT_EQ(session.failure(), "");
+  auto r = test::run_hitl(session.fly({"trajectory", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json"}),
                           std::chrono::seconds(120));
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -172,10 +165,9 @@ TEST(OperateE2E, FlyTrajectoryFromTheHostThroughTheSession) {
 
   // Attitude mode: Stabilized, the pilot closes position and velocity itself (measured: estimate
   // RMS 0.26 m, max 0.62 m; truth RMS 0.44 m, max 0.92 m).
-  auto a = test::run_hitl({"--json", "fly", "--session-port", std::to_string(clients), "-i", "127.0.0.1", "--port",
-                           std::to_string(test::free_udp_port()), "--local-port", std::to_string(test::free_udp_port()),
-                           "trajectory", "--mode", "attitude", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json"},
-                          std::chrono::seconds(120));
+  auto a = test::run_hitl(
+      session.fly({"trajectory", "--mode", "attitude", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json"}),
+      std::chrono::seconds(120));
   EXPECT_EQ(a.exit_code, 0) << a.out << a.err;
   const auto ja = nlohmann::json::parse(a.out);
   EXPECT_EQ(ja["state"], "DONE");
@@ -186,13 +178,9 @@ TEST(OperateE2E, FlyTrajectoryFromTheHostThroughTheSession) {
   // A bad file: refused before anything is sent.
   const auto dir = test::temp_dir();
   std::ofstream(dir + "/bad.json") << R"({"waypoints": [{"t": 0, "x": 0, "y": 0}]})";
-  auto bad = test::run_hitl({"fly", "--session-port", std::to_string(clients), "trajectory", dir + "/bad.json"});
+  auto bad = test::run_hitl({"fly", "--session-port", std::to_string(session.client_port()), "trajectory", dir + "/bad.json"});
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("waypoints[0].z: missing"), std::string::npos) << bad.err;
-  sim.signal(SIGINT);
-  board.signal(SIGINT);
-  sim.wait(10s);
-  board.wait(10s);
 }
 
 }  // namespace

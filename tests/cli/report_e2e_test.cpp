@@ -21,6 +21,7 @@
 #include "base/mavlink/text_field.h"
 #include "engine/mavlink/tlog.h"
 #include "tests/support/json_lines.h"
+#include "tests/support/lockstep_session.h"
 #include "tests/support/process.h"
 #include "tests/support/tools.h"
 
@@ -277,22 +278,12 @@ TEST(ReportE2E, FlyTrajectoryReportThroughASessionIsScoredOnTheEstimate) {
   // hitl fly trajectory --report, through a session: the link's frames (the board's telemetry, the
   // session's truth) and the pilot's setpoints and errors, against the board's estimate.
   const std::string dir = test::temp_dir();
-  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), clients = test::free_udp_port();
-  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil),
-                       "--gcs-port", std::to_string(gcs), "--vio-port", "0", "--lockstep"});
-  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
-  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
-                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", std::to_string(clients), "--lockstep",
-                     "--speed", "5", "--duration", "300"});
-  ASSERT_TRUE(sim.wait_for_stderr("clients on", 10s)) << sim.err();
-  auto r = test::run_hitl({"--json", "fly", "--session-port", std::to_string(clients), "-i", "127.0.0.1", "--port",
-                           std::to_string(test::free_udp_port()), "--local-port", std::to_string(test::free_udp_port()),
-                           "trajectory", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--report", dir + "/fly.html"},
-                          120s);
-  sim.signal(SIGINT);
-  sim.wait(20s);
-  board.signal(SIGINT);
-  board.wait(20s);
+  test::LockstepSessionWithClients session;
+  ASSERT_EQ(session.failure(), "");
+  auto r = test::run_hitl(
+      session.fly({"trajectory", std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--report", dir + "/fly.html"}),
+      120s);
+  session.stop();
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto j = test::last_json_line(r.out);
   EXPECT_EQ(j["report"]["path"], dir + "/fly.html");
