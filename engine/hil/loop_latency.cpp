@@ -33,11 +33,6 @@ void LoopLatency::on_actuator(uint64_t time_usec, double wall_s) {
   pending_.clear();
 }
 
-std::optional<double> LoopLatency::p99_us() const {
-  if (histogram_.count() == 0) return std::nullopt;
-  return histogram_.percentile(0.99);
-}
-
 LoopLatencySummary LoopLatency::summary() const {
   LoopLatencySummary s;
   s.latency = histogram_.summary();

@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
-#include <optional>
 
 #include "engine/hil/actuator_input.h"
 #include "engine/telemetry/latency_histogram.h"
@@ -35,8 +34,6 @@ class LoopLatency {
   /// A HIL_ACTUATOR_CONTROLS stamped `time_usec` arrived at `wall_s` (monotonic).
   void on_actuator(uint64_t time_usec, double wall_s);
   LoopLatencySummary summary() const;
-  /// The 99th percentile so far (cheap enough for every status message); none before an answer.
-  std::optional<double> p99_us() const;
 
  private:
   struct Pending {
