@@ -34,12 +34,14 @@
 
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/messages.h"
+#include "tests/support/loopback.h"
 #include "tests/support/process.h"
 
 namespace {
 
 using namespace std::chrono_literals;
 namespace msg = hitl::mavlink::msg;
+using hitl::test::loopback_address;
 
 int64_t now_ns() {
   timespec t{};
@@ -54,14 +56,6 @@ int64_t wall_ns() {
   return int64_t{t.tv_sec} * 1'000'000'000 + t.tv_nsec;
 }
 
-sockaddr_in loopback(uint16_t port) {
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(port);
-  return a;
-}
-
 /// A UDP socket on 127.0.0.1:port (0: ephemeral) with a large receive buffer, SO_RXQ_OVFL and
 /// kernel receive timestamps (the latency is the kernel's arrival time at the client, so a busy
 /// reader here does not add to it).
@@ -71,7 +65,7 @@ int open_socket(uint16_t port) {
   ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes);
   ::setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
   ::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
-  const auto a = loopback(port);
+  const auto a = loopback_address(port);
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) {
     std::perror("bind");
     std::exit(1);
@@ -154,7 +148,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
     ::epoll_ctl(ep, EPOLL_CTL_ADD, clients[i].fd, &ev);
     hitl::mavlink::FrameEncoder enc(200, static_cast<uint8_t>(1 + i));
     const std::size_t n = enc.encode(msg::Heartbeat{}, buf);
-    const auto to = loopback(clients_port);
+    const auto to = loopback_address(clients_port);
     ::sendto(clients[i].fd, buf.data(), n, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
   }
   std::this_thread::sleep_for(500ms);  // every client known to the bridge before the stream
@@ -170,7 +164,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
     uint8_t data[2048];
     alignas(cmsghdr) char control[CMSG_SPACE(sizeof(uint32_t)) + CMSG_SPACE(sizeof(timespec))];
     int64_t idle_since = now_ns(), next_heartbeat = now_ns();
-    const auto clients_at = loopback(clients_port);
+    const auto clients_at = loopback_address(clients_port);
     for (;;) {
       if (now_ns() >= next_heartbeat) {  // clients say they are there, as MAVLink clients do (the bridge forgets one after 10 s)
         next_heartbeat += 2'000'000'000;
@@ -227,7 +221,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
   const int64_t end = start + static_cast<int64_t>(run.seconds * 1e9);
   const int64_t period = run.rate_hz > 0 ? static_cast<int64_t>(1e9 / run.rate_hz) : 0;
   hitl::mavlink::FrameEncoder board(1, 1);
-  const auto to = loopback(local_port);
+  const auto to = loopback_address(local_port);
   uint64_t sent = 0, send_refused = 0;
   for (int64_t next = start; sent < capacity; next += period) {
     const int64_t t = now_ns();

@@ -18,6 +18,7 @@
 #include "base/mavlink/messages.h"
 #include "engine/net/udp_endpoint.h"
 #include "tests/support/json_lines.h"
+#include "tests/support/loopback.h"
 #include "tests/support/process.h"
 
 namespace hitl::test {
@@ -38,14 +39,6 @@ int open_udp() {
     return -1;
   }
   return fd;
-}
-
-sockaddr_in loopback(uint16_t port) {
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(port);
-  return a;
 }
 
 void send_to(int fd, const sockaddr_in& to, const uint8_t* bytes, std::size_t n) {
@@ -125,7 +118,7 @@ SimLoadResult run_sim_load(const SimLoadConfig& config) {
   hb.autopilot = 8;
   mavlink::FrameBuffer hb_buf;
   const std::size_t hb_n = client_encoder.encode(hb, hb_buf);
-  const sockaddr_in to_clients = loopback(clients_port), to_hil = loopback(sim_port);
+  const sockaddr_in to_clients = loopback_address(clients_port), to_hil = loopback_address(sim_port);
 
   const double load_t0 = unix_time_ns() * 1e-9;
   std::atomic<bool> load_stop{false};
