@@ -10,10 +10,14 @@
 //     factor and hitl's CPU per step.
 //  3. lockstep as fast as possible against `hitl target --lockstep`: real-time factor and the CPU
 //     per step of both.
+//  0. the floor: a loop with no simulator in it that makes the same system calls and sends the same
+//     traffic as part 1 (timing_floor.cpp), measured the same way: what this machine charges any
+//     simulator at 250 Hz, so part 1 minus part 0 is hitl's own share (--floor-sendmmsg: its two
+//     sends per tick in one sendmmsg).
 // Prints figures (or one JSON object with --json); asserts nothing.
 //
 // Usage: sim_timing_bench [--seconds S] [--lockstep-seconds S] [--runs N] [--json] [--hitl PATH]
-//                         [--only realtime|standin|target] [-- EXTRA hitl sim ARGS...]
+//                         [--floor-sendmmsg] [--only floor|realtime|standin|target] [-- EXTRA hitl sim ARGS...]
 // e.g. sim_timing_bench --runs 3 --json -- --realtime
 #include <poll.h>
 #include <signal.h>
@@ -38,6 +42,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/contract/hil_actuators.h"
+#include "bench/sim/timing_floor.h"
 #include "base/mavlink/frame_parser.h"
 #include "base/mavlink/messages.h"
 #include "tests/support/mavlink_peer.h"
@@ -224,11 +229,16 @@ json fail(const std::string& what, const Watched& w) { return json{{"error", wha
 
 // --- 1. real time --------------------------------------------------------------------------------
 
-json real_time(double seconds, const std::vector<std::string>& extra) {
+/// `hitl sim` (or the floor loop when `floor` is set) in real time for `seconds` against the stand-in.
+json real_time(double seconds, const std::vector<std::string>& extra, bool floor = false, bool floor_sendmmsg = false) {
   const uint16_t board_port = hitl::test::free_udp_port(), sim_port = hitl::test::free_udp_port(),
                  vio_port = hitl::test::free_udp_port(), clients_port = hitl::test::free_udp_port();
   StandIn board(board_port, sim_port, vio_port, clients_port);
-  auto args = sim_args(board_port, sim_port, vio_port, clients_port, extra);
+  const std::vector<std::string> args =
+      floor ? std::vector<std::string>{std::filesystem::read_symlink("/proc/self/exe").string(), "--floor-loop",
+                                       port(board_port), port(sim_port), port(vio_port), port(clients_port),
+                                       std::to_string(seconds), floor_sendmmsg ? "sendmmsg" : "sendto"}
+            : sim_args(board_port, sim_port, vio_port, clients_port, extra);
   Process sim(args);
   Watched w = watch(sim, {sim.pid()}, seconds + 0.5);
   if (w.statuses.size() < 3) return fail("fewer than 3 status lines: " + sim.err(), w);
@@ -306,23 +316,25 @@ json lockstep_target(double wall_s, const std::vector<std::string>& extra) {
 // --- output ------------------------------------------------------------------------------------
 
 void print_run(const json& r) {
-  if (r.contains("realtime")) {
-    const auto& x = r["realtime"];
+  for (const char* key : {"floor", "realtime"}) {
+    if (!r.contains(key)) continue;
+    const auto& x = r[key];
+    const char* label = std::string(key) == "floor" ? "floor (no simulator)" : "real time";
     if (x.contains("error")) {
-      std::printf("  real time: %s\n", x["error"].get<std::string>().c_str());
-    } else {
-      const auto& g = x["hil_sensor_interarrival"];
-      std::printf("  real time %.0f s, VIO %.0f Hz, truth %.0f Hz: CPU %.2f %% of a core (%.1f us/tick, %.2f wake-ups and "
-                  "%.2f preemptions per tick), peak RSS %.1f MB\n",
-                  x["seconds"].get<double>(), x["odometry_to_vio_hz"].get<double>(), x["truth_to_client_hz"].get<double>(),
-                  x["cpu_pct_of_core"].get<double>(), x["cpu_us_per_tick"].get<double>(),
-                  x["wake_ups_per_tick"].get<double>(), x["preemptions_per_tick"].get<double>(), x["peak_rss_mb"].get<double>());
-      if (g.contains("std_us"))
-        std::printf("    HIL_SENSOR inter-arrival (kernel timestamps, n %d): mean %.1f us, std %.1f us, p99 %.0f us (%+.0f), "
-                    "max %.0f us\n",
-                    g["n"].get<int>(), g["mean_us"].get<double>(), g["std_us"].get<double>(), g["p99_us"].get<double>(),
-                    g["p99_us"].get<double>() - kSensorPeriod_us, g["max_us"].get<double>());
+      std::printf("  %s: %s\n", label, x["error"].get<std::string>().c_str());
+      continue;
     }
+    const auto& g = x["hil_sensor_interarrival"];
+    std::printf("  %s %.0f s, VIO %.0f Hz, truth %.0f Hz: CPU %.2f %% of a core (%.1f us/tick, %.2f wake-ups and "
+                "%.2f preemptions per tick), peak RSS %.1f MB\n",
+                label, x["seconds"].get<double>(), x["odometry_to_vio_hz"].get<double>(), x["truth_to_client_hz"].get<double>(),
+                x["cpu_pct_of_core"].get<double>(), x["cpu_us_per_tick"].get<double>(), x["wake_ups_per_tick"].get<double>(),
+                x["preemptions_per_tick"].get<double>(), x["peak_rss_mb"].get<double>());
+    if (g.contains("std_us"))
+      std::printf("    HIL_SENSOR inter-arrival (kernel timestamps, n %d): mean %.1f us, std %.1f us, p99 %.0f us (%+.0f), "
+                  "max %.0f us\n",
+                  g["n"].get<int>(), g["mean_us"].get<double>(), g["std_us"].get<double>(), g["p99_us"].get<double>(),
+                  g["p99_us"].get<double>() - kSensorPeriod_us, g["max_us"].get<double>());
   }
   for (const char* key : {"lockstep_stand_in", "lockstep_target"}) {
     if (!r.contains(key)) continue;
@@ -349,17 +361,21 @@ double load_average() {
 
 int usage() {
   std::fprintf(stderr,
-               "usage: sim_timing_bench [--seconds S] [--lockstep-seconds S] [--runs N] [--json] [--hitl PATH]\n"
-               "                        [--only realtime|standin|target] [-- EXTRA hitl sim ARGS...]\n");
+               "usage: sim_timing_bench [--seconds S] [--lockstep-seconds S] [--runs N] [--json] [--hitl PATH] [--floor-sendmmsg]\n"
+               "                        [--only floor|realtime|standin|target] [-- EXTRA hitl sim ARGS...]\n");
   return 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 8 && std::string(argv[1]) == "--floor-loop")  // the floor, as a process of its own (real_time)
+    return hitl::bench::run_timing_floor({static_cast<uint16_t>(std::atoi(argv[2])), static_cast<uint16_t>(std::atoi(argv[3])),
+                                          static_cast<uint16_t>(std::atoi(argv[4])), static_cast<uint16_t>(std::atoi(argv[5]))},
+                                         std::atof(argv[6]), std::string(argv[7]) == "sendmmsg");
   double seconds = 20, lockstep_s = 5;
   int runs = 1;
-  bool as_json = false;
+  bool as_json = false, floor_sendmmsg = false;
   std::string only;
   std::vector<std::string> extra;
   for (int i = 1; i < argc; ++i) {
@@ -367,6 +383,7 @@ int main(int argc, char** argv) {
     auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     const char* v = nullptr;
     if (a == "--json") as_json = true;
+    else if (a == "--floor-sendmmsg") floor_sendmmsg = true;
     else if (a == "--") {
       extra.assign(argv + i + 1, argv + argc);
       break;
@@ -389,6 +406,7 @@ int main(int argc, char** argv) {
                 std::thread::hardware_concurrency(), load_average(), extra.empty() ? "" : ", extra hitl sim arguments given");
   for (int run = 0; run < runs; ++run) {
     json r;
+    if (only.empty() || only == "floor") r["floor"] = real_time(seconds, extra, true, floor_sendmmsg);
     if (only.empty() || only == "realtime") r["realtime"] = real_time(seconds, extra);
     if (only.empty() || only == "standin") r["lockstep_stand_in"] = lockstep_stand_in(lockstep_s, extra);
     if (only.empty() || only == "target") r["lockstep_target"] = lockstep_target(lockstep_s, extra);

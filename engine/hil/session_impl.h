@@ -82,6 +82,8 @@ struct Session::Impl {
   // --- the tick: drain, lockstep wait, actuator commands, physics, sensors, messages, flush ----
   Status step(EventSink& events);
   void drain(double now_s);
+  /// The status once it is due, and the client port's queue (routed frames, truth, status).
+  void serve_clients(double now_s, EventSink& events);
   /// HIL_SENSOR and HIL_GPS for what was sampled, the pilot's sticks (-t), HEARTBEAT once a second.
   void send_messages(const sensors::SensorFrame& frame, uint64_t t_us, double sent_s, EventSink& events);
   /// Starts and ends the faults due at this step's time (said as events) and sets the model's

@@ -20,14 +20,14 @@
 namespace hitl::hil {
 
 Status Session::Impl::step(EventSink& events) {
-  // Drain: the flight stack's link and the client port; then what clients are owed this step.
+  // Drain: the flight stack's link and the client port.
   const double now_s = monotonic_s();
   drain(now_s);
-  if (services->status_due(now_s, sim_time_s()))  // once a second (of wall time; the loop latency's also of simulated time)
-    services->send_status(now_s, sim_time_s(), start_wall_s, status(now_s));
-  services->serve(events);
   say_record_failure(events);
-  if (take_controls(events)) return Ok{};  // paused: the model holds, nothing is sent
+  if (take_controls(events)) {  // paused: the model holds, nothing is sent to the flight stack
+    serve_clients(now_s, events);
+    return Ok{};
+  }
   // Lockstep wait for the answer to the last HIL_SENSOR (a step shorter than the IMU period sends
   // none every step, and none is owed right after a pause).
   if (!std::exchange(resumed, false) && std::exchange(sensor_sent, false))
@@ -51,9 +51,18 @@ Status Session::Impl::step(EventSink& events) {
   stack->actuators().take_new();  // answers counted from here on belong to these sensors
   if (services->send_vio_if_due(frame.truth, t_us, sim_time_s(), fault_schedule.active())) paths->on_odometry(sent_s);
   services->send_truth_if_due(frame.truth, t_us, sim_time_s());
+  // What clients are owed, after the flight stack's datagram: the status burst and the client
+  // queue never delay a HIL_SENSOR.
+  serve_clients(now_s, events);
   say_send_errors(events);
   stack->check_answered(events);
   return Ok{};  // the run loop publishes the snapshot
+}
+
+void Session::Impl::serve_clients(double now_s, EventSink& events) {
+  if (services->status_due(now_s, sim_time_s()))  // once a second (of wall time; the loop latency's also of simulated time)
+    services->send_status(now_s, sim_time_s(), start_wall_s, status(now_s));
+  services->serve(events);
 }
 
 void Session::Impl::apply_faults(EventSink& events) {
