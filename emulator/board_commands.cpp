@@ -67,8 +67,7 @@ void Board::Impl::handle_command(MavlinkInstance& inst, const mavlink::Frame& f,
     default: break;
   }
   ack(inst, command, r.result, f);
-  if (!r.text.empty())
-    statustext(r.text, r.result == MavResult::Accepted ? mavlink::MavSeverity::Info : mavlink::MavSeverity::Critical);
+  say_flight_messages();  // a denial's words, once, with the flight stack's severity
 }
 
 void Board::Impl::send_param(MavlinkInstance& inst, std::size_t index) {

@@ -54,7 +54,7 @@ void Board::Impl::process_board(uint64_t t_us) {
     if (s.mag) flight->on_mag(*s.mag);
     if (s.baro) flight->on_baro(*s.baro);
   }
-  for (const auto& text : flight->take_messages()) statustext(text, mavlink::MavSeverity::Info);
+  say_flight_messages();
 }
 
 }  // namespace hitl::target

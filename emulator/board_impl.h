@@ -88,6 +88,8 @@ struct Board::Impl {
   /// HEARTBEAT.base_mode: the flight stack's flags, plus HIL when SYS_HITL is 1 (as commander does).
   uint8_t base_mode_with_hil(const FlightState& s) const;
   void statustext(const std::string& text, mavlink::MavSeverity severity);
+  /// The flight stack's messages (flight->take_messages()) as STATUSTEXT, each with its severity.
+  void say_flight_messages();
   void send_stream(MavlinkInstance& inst, uint32_t id);
   void send_actuators(MavlinkInstance& inst);
   /// The HIL_ACTUATOR_CONTROLS the board would send now (stamped, flagged, armed or not).

@@ -3,6 +3,7 @@
 // lockstep) and STATUSTEXT. The messages themselves are built in telemetry_messages.cpp.
 #include "base/contract/hil_actuators.h"
 #include "base/mavlink/heartbeat.h"
+#include "base/mavlink/severity.h"
 #include "base/mavlink/text_field.h"
 #include "emulator/board_impl.h"
 #include "emulator/telemetry_messages.h"
@@ -13,6 +14,10 @@ namespace msg = mavlink::msg;
 
 uint8_t Board::Impl::base_mode_with_hil(const FlightState& s) const {
   return static_cast<uint8_t>(s.base_mode | (hil_mode() ? mavlink::mode_flag::kHilEnabled : 0));
+}
+
+void Board::Impl::say_flight_messages() {
+  for (const auto& m : flight->take_messages()) statustext(m.text, mavlink::mav_severity(m.severity));
 }
 
 void Board::Impl::statustext(const std::string& text, mavlink::MavSeverity severity) {

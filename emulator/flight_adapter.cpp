@@ -27,6 +27,7 @@ Eigen::Vector3d vec(const float (&v)[3]) { return {v[0], v[1], v[2]}; }
 
 struct FlightAdapter::Impl {
   flight::FlightCore core;
+  std::vector<flight::StatusMessage> said;  ///< the adapter's own denials, for take_messages()
   flight::StickInput sticks;  ///< the last sticks, for channels an override leaves as they were
 };
 
@@ -104,7 +105,10 @@ void FlightAdapter::on_sticks(double roll, double pitch, double yaw, double thro
 }
 
 CommandResult FlightAdapter::arm(bool force, uint64_t) {
-  if (const auto failure = calibration_failure(); !force && !failure.empty()) return {mavlink::MavResult::Denied, failure};
+  if (const auto failure = calibration_failure(); !force && !failure.empty()) {
+    impl_->said.push_back({Severity::Error, failure});
+    return {mavlink::MavResult::Denied, failure};
+  }
   return reply(impl_->core.arm(force));
 }
 
@@ -140,7 +144,11 @@ CommandResult FlightAdapter::takeoff(double altitude_amsl_m, uint64_t) {
 
 CommandResult FlightAdapter::set_mode(uint8_t main_mode, uint8_t sub_mode, uint64_t) {
   const auto mode = flight::flight_mode_from_px4((static_cast<uint32_t>(main_mode) << 16) | (static_cast<uint32_t>(sub_mode) << 24));
-  if (!mode) return {mavlink::MavResult::Unsupported, "mode not available on hitl target (Position, Hold, Takeoff, Land)"};
+  if (!mode) {
+    const std::string why = "mode not available on hitl target (Position, Hold, Takeoff, Land)";
+    impl_->said.push_back({Severity::Error, why});
+    return {mavlink::MavResult::Unsupported, why};
+  }
   return reply(impl_->core.set_mode(*mode));
 }
 
@@ -191,9 +199,10 @@ FlightState FlightAdapter::state() const {
   return s;
 }
 
-std::vector<std::string> FlightAdapter::take_messages() {
-  std::vector<std::string> out;
-  for (auto& m : impl_->core.take_messages()) out.push_back(std::move(m.text));
+std::vector<flight::StatusMessage> FlightAdapter::take_messages() {
+  std::vector<flight::StatusMessage> out = std::move(impl_->said);
+  impl_->said.clear();
+  for (auto& m : impl_->core.take_messages()) out.push_back(std::move(m));
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/mavlink/enums.h"
+#include "emulator/flight/status_message.h"
 #include "emulator/param_store.h"
 #include "target/core/px4_topics.h"
 
@@ -71,8 +72,9 @@ class FlightAdapter {
   std::array<double, 4> step(uint64_t now_us);
 
   FlightState state() const;
-  /// Messages the flight stack wants to tell the operator (mode changes, landing, auto-disarm).
-  std::vector<std::string> take_messages();
+  /// Messages the flight stack wants to tell the operator (mode changes, landing, auto-disarm, and
+  /// every denial a command reply carries), each once, with its severity.
+  std::vector<flight::StatusMessage> take_messages();
   std::string commander_status() const;
   /// `commander check`: "Preflight check: OK", or each failure and "Preflight check: FAILED".
   std::string commander_check() const;

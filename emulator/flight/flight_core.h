@@ -28,6 +28,7 @@
 #include "emulator/flight/position_control.h"
 #include "emulator/flight/px4_modes.h"
 #include "emulator/flight/rate_control.h"
+#include "emulator/flight/status_message.h"
 
 namespace hitl::flight {
 
@@ -39,11 +40,6 @@ std::string to_string(CommandResult result);
 struct CommandReply {
   CommandResult result = CommandResult::Accepted;
   std::string reason;  ///< empty when accepted
-};
-
-struct StatusMessage {
-  Severity severity = Severity::Info;  ///< base/common/severity.h (a denial is Error: CRITICAL on the wire)
-  std::string text;
 };
 
 /// HIL_ACTUATOR_CONTROLS content.

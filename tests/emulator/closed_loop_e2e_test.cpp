@@ -99,6 +99,7 @@ class GroundStation {
   uint8_t landed() const { return landed_; }
   uint32_t custom_mode() const { return custom_mode_; }
   const std::vector<std::string>& texts() const { return texts_; }
+  const std::vector<uint8_t>& severities() const { return severities_; }  ///< MAV_SEVERITY of each of texts()
 
  private:
   template <class F>
@@ -119,6 +120,7 @@ class GroundStation {
     } else if (f.is<msg::Statustext>()) {
       const auto t = f.as<msg::Statustext>();
       texts_.emplace_back(t.text.data(), strnlen(t.text.data(), t.text.size()));
+      severities_.push_back(t.severity);
     }
   }
   void send_sticks() {
@@ -139,6 +141,7 @@ class GroundStation {
   mavlink::FrameParser parser_{set_};
   std::optional<msg::CommandAck> last_ack_;
   std::vector<std::string> texts_;
+  std::vector<uint8_t> severities_;
   double truth_t_s_ = 0, north_m_ = 0, east_m_ = 0, down_m_ = 0;
   std::optional<double> rest_down_m_;
   bool armed_ = false, ready_ = false, sticks_on_ = false;
@@ -181,6 +184,14 @@ TEST(ClosedLoopE2E, TargetAndSimFlyTheWholeMissionThroughMavlink) {
   EXPECT_NE(*early, MavResult::Accepted);
   gs.pump(200ms);
   EXPECT_TRUE(contains(gs.texts(), "Preflight Fail")) << (gs.texts().empty() ? "no STATUSTEXT" : gs.texts().back());
+  // Said once, as PX4's commander says a denial: CRITICAL.
+  int denials = 0;
+  for (std::size_t i = 0; i < gs.texts().size(); ++i)
+    if (gs.texts()[i].find("Preflight Fail") != std::string::npos) {
+      ++denials;
+      EXPECT_EQ(gs.severities()[i], static_cast<uint8_t>(mavlink::MavSeverity::Critical)) << gs.texts()[i];
+    }
+  EXPECT_EQ(denials, 1);
 
   // The estimator converges; then arm and take off (NaN altitude: MIS_TAKEOFF_ALT above home).
   ASSERT_TRUE(gs.until([&] { return gs.ready(); }, 60s)) << "estimator never ready; board: " << board.err();
