@@ -19,29 +19,19 @@
 
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/messages.h"
+#include "tests/support/loopback.h"
 
 namespace hitl::bench {
 namespace {
 
 int bound_socket(uint16_t port) {
   const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(port);
+  sockaddr_in a = test::loopback_address(port);
   if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
     std::perror("timing floor: bind");
     std::exit(1);
   }
   return fd;
-}
-
-sockaddr_in loopback_port(uint16_t port) {
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(port);
-  return a;
 }
 
 void add_ns(timespec& t, long ns) {
@@ -56,7 +46,7 @@ void add_ns(timespec& t, long ns) {
 
 int run_timing_floor(const FloorPorts& ports, double seconds, bool sendmmsg_both) {
   const int board = bound_socket(ports.sim), vio = bound_socket(0), clients = bound_socket(ports.clients);
-  const sockaddr_in board_to = loopback_port(ports.board), vio_to = loopback_port(ports.vio);
+  const sockaddr_in board_to = test::loopback_address(ports.board), vio_to = test::loopback_address(ports.vio);
   sockaddr_in client_to{};
   bool client_known = false;
 
