@@ -11,6 +11,7 @@
 
 #include "base/mavlink/frame_encoder.h"
 #include "tests/cli/sim_board.h"
+#include "tests/support/loopback.h"
 
 namespace hitl {
 namespace {
@@ -41,10 +42,7 @@ std::unique_ptr<Process> start_px4_sitl_session(uint16_t port) {
 /// Connects to the session as PX4 SITL's simulator_mavlink does; -1 when it cannot.
 int connect_as_px4_sitl(uint16_t port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(port);
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  sockaddr_in addr = test::loopback_address(port);
   if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0) return fd;
   ::close(fd);
   return -1;

@@ -29,9 +29,7 @@ using namespace std::chrono_literals;
 int open_udp() {
   const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
   if (fd < 0) return -1;
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  sockaddr_in a = loopback_address(0);
   int small = 4096;  // nobody reads the clients' sockets: keep what the kernel holds for them small
   ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
   if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {

@@ -24,6 +24,7 @@
 #include "engine/hil/session.h"
 #include "engine/model/x500_defaults.h"
 #include "tests/support/process.h"
+#include "tests/support/loopback.h"
 
 namespace hitl::hil::test_wire {
 
@@ -41,9 +42,7 @@ class Board {
  public:
   Board() {
     fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    sockaddr_in a = test::loopback_address(0);
     ::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a);
     socklen_t n = sizeof a;
     ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &n);

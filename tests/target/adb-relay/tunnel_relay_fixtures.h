@@ -24,6 +24,7 @@
 #include "engine/net/datagram_tunnel.h"
 #include "engine/net/udp_endpoint.h"
 #include "target/adb-relay/relay.h"
+#include "tests/support/loopback.h"
 
 namespace hitl::relay_test {
 
@@ -142,9 +143,7 @@ inline std::unique_ptr<net::DatagramTunnel> open_tunnel(uint16_t relay_port, Eve
 /// descriptor, `port` its port. Call it inside ASSERT_NO_FATAL_FAILURE.
 inline void listen_on_loopback(int backlog, int& server, uint16_t& port) {
   server = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  sockaddr_in a = test::loopback_address(0);
   ASSERT_EQ(::bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
   ASSERT_EQ(::listen(server, backlog), 0);
   socklen_t len = sizeof a;
@@ -157,10 +156,7 @@ class RawClient {
  public:
   explicit RawClient(uint16_t port) {
     fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(port);
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    sockaddr_in a = test::loopback_address(port);
     if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) throw std::runtime_error("connect failed");
   }
   ~RawClient() { ::close(fd_); }

@@ -12,6 +12,7 @@
 
 #include "tests/support/mavlink_peer.h"
 #include "tests/target/vio-server/vio_server_run.h"
+#include "tests/support/loopback.h"
 
 namespace hitl::vio {
 namespace {
@@ -102,9 +103,7 @@ TEST(VioServerE2E, BadInputIsAClearErrorAndANonZeroExit) {
   {
     // The port is taken.
     const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    sockaddr_in addr = test::loopback_address(0);
     ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
     socklen_t len = sizeof addr;
     ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
