@@ -26,14 +26,16 @@ namespace hitl::hil::test_lockstep {
 struct Seen {
   std::map<uint64_t, mavlink::msg::HilSensor> sensors;  ///< by time_usec
   std::map<uint64_t, mavlink::msg::HilGps> gps;
+  std::vector<uint64_t> arrivals;  ///< each HIL_SENSOR's time_usec as it arrived (repeats and order as on the wire)
 };
 
 /// The motor command (0..1, every motor) the board answers the HIL_SENSOR of `time_us` with.
 using Command = std::function<double(uint64_t time_us)>;
 
-/// A lockstep session to `duration_s` with `faults` (noise off unless `noise`) against the board.
+/// A lockstep session to `duration_s` with `faults` (noise off unless `noise`) against the board;
+/// `tweak` changes the rest of its config.
 inline Seen fly(const std::vector<std::string>& faults, double duration_s, const Command& command, bool noise = false,
-                uint64_t seed = 1) {
+                uint64_t seed = 1, const std::function<void(SessionConfig&)>& tweak = {}) {
   namespace msg = mavlink::msg;
   test::MavlinkPeer board(0, 0);
   SessionConfig c;
@@ -49,6 +51,7 @@ inline Seen fly(const std::vector<std::string>& faults, double duration_s, const
   c.duration_s = duration_s;
   c.vehicle = model::x500_vehicle_config();
   c.world = model::default_world_config();
+  if (tweak) tweak(c);
   for (const auto& f : faults) {
     auto spec = faults::parse_fault(f);
     EXPECT_TRUE(spec) << spec.error().message;
@@ -71,6 +74,7 @@ inline Seen fly(const std::vector<std::string>& faults, double duration_s, const
           if (!f.is<msg::HilSensor>()) return;
           const auto s = f.as<msg::HilSensor>();
           seen.sensors[s.time_usec] = s;
+          seen.arrivals.push_back(s.time_usec);
           msg::HilActuatorControls a;
           a.time_usec = s.time_usec;  // lockstep: the answer to this HIL_SENSOR
           a.controls = {};
