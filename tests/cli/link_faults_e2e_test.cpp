@@ -246,7 +246,7 @@ TEST(LinkFaultsE2E, JitterSpreadsArrivalsOverTheSettingAndKeepsTheOrder) {
                 kJitter_ms, low_ms, median_ms, high_ms, percentile(base_ms, 0.95) - percentile(base_ms, 0.05));
     EXPECT_GT(high_ms - low_ms, 0.4 * kJitter_ms) << "spread over the setting";
     EXPECT_GT(median_ms, 0.4 * kJitter_ms);
-    EXPECT_LT(high_ms, kJitter_ms + 5.0) << "never later than the setting (and a tick)";
+    EXPECT_LT(high_ms, kJitter_ms + 8.0) << "never later than the setting (and two ticks of a busy machine)";
     EXPECT_GT(low_ms, -2.0);
     EXPECT_EQ(got.size(), sent(j, message)) << "none lost";
     EXPECT_EQ(counted(j, link, "dropped_datagrams"), 0u);
