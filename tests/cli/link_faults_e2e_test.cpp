@@ -2,7 +2,7 @@
 // stand-in board on the HIL port and a stand-in VIO server on the VIO port stamp every datagram as
 // it arrives and read its HIL_SENSOR's (ODOMETRY's) time_usec; what they saw is checked against the
 // setting and against what the JSON summary says the link faults did (hil_link_faults,
-// vio_link_faults). Counts and simulated time only, except jitter, which is wall time by nature.
+// vio_link_faults). Counts and simulated time only, except delay and jitter, wall time by nature.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -250,6 +250,33 @@ TEST(LinkFaultsE2E, JitterSpreadsArrivalsOverTheSettingAndKeepsTheOrder) {
     EXPECT_GT(low_ms, -2.0);
     EXPECT_EQ(got.size(), sent(j, message)) << "none lost";
     EXPECT_EQ(counted(j, link, "dropped_datagrams"), 0u);
+  }
+}
+
+// hil-delay / vio-delay: each datagram leaves this much later; the median arrival against the
+// simulated clock (speed 1) moves by the setting, within a millisecond, nothing lost, order kept.
+TEST(LinkFaultsE2E, DelayMovesArrivalsByTheSettingWithinAMillisecond) {
+  constexpr double kDelay_ms = 20;
+  Receiver board, vio;
+  const auto j = run_sim(board, vio, {"--duration", "2.5", "--speed", "1", "--vio-rate", "50", "--fault", "hil-delay:20@1+1",
+                                      "--fault", "vio-delay:20@1+1"});
+  for (const auto& [name, got, link, message] :
+       {std::tuple{"HIL", board.arrivals(), "hil_link_faults", "HIL_SENSOR"}, std::tuple{"VIO", vio.arrivals(), "vio_link_faults", "ODOMETRY"}}) {
+    SCOPED_TRACE(name);
+    std::vector<double> base_ms, delayed_ms;
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      if (i > 0) EXPECT_GT(got[i].time_us, got[i - 1].time_us) << "order kept";
+      const double offset_ms = (got[i].wall_s - static_cast<double>(got[i].time_us) * 1e-6) * 1e3;
+      if (in_window(got[i].time_us, 0.3, 0.95)) base_ms.push_back(offset_ms);
+      if (in_window(got[i].time_us, 1.1, 1.9)) delayed_ms.push_back(offset_ms);
+    }
+    ASSERT_GT(base_ms.size(), 20u);
+    ASSERT_GT(delayed_ms.size(), 30u);
+    const double measured_ms = percentile(delayed_ms, 0.5) - percentile(base_ms, 0.5);
+    std::printf("%s delay:%g measured %.2f ms at the receiver (median over %zu)\n", name, kDelay_ms, measured_ms, delayed_ms.size());
+    EXPECT_NEAR(measured_ms, kDelay_ms, 1.0);
+    EXPECT_EQ(got.size(), sent(j, message)) << "none lost";
+    EXPECT_GE(counted(j, link, "delayed_datagrams"), delayed_ms.size());
   }
 }
 
