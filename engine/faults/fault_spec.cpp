@@ -115,14 +115,14 @@ const std::vector<FaultInfo>& fault_catalogue() {
       {FaultKind::HilReorder, "hil-reorder", {{"p", 0, 1}}, 1, "each datagram to the flight stack swaps places with the next with probability p"},
       {FaultKind::HilDuplicate, "hil-dup", {{"p", 0, 1}}, 1, "each datagram to the flight stack is sent twice with probability p"},
       {FaultKind::HilRate, "hil-rate", {{"hz", 0.1, kMaxLinkRate_Hz}}, 1,
-       "the HIL link carries at most hz datagrams a second (a token bucket; the rest are dropped)"},
+       "the HIL link carries at most hz datagrams a second of simulated time (a token bucket; the rest are dropped)"},
       {FaultKind::VioDrop, "vio-drop", {{"p", 0, 1}}, 1, "each ODOMETRY to the VIO server is dropped with probability p"},
       {FaultKind::VioDelay, "vio-delay", {{"ms", 0, kMaxHilDelay_ms}}, 1, "each ODOMETRY leaves this much later (queued; order kept)"},
       {FaultKind::VioBurst, "vio-burst", {{"p_bad", 0, 1}, {"p_good", 0.001, 1}}, 2, "burst loss on the VIO link (Gilbert-Elliott, as hil-burst)"},
       {FaultKind::VioJitter, "vio-jitter", {{"ms", 0, kMaxHilDelay_ms}}, 1, "each ODOMETRY leaves up to ms later (uniform, seeded); order is kept"},
       {FaultKind::VioReorder, "vio-reorder", {{"p", 0, 1}}, 1, "each ODOMETRY swaps places with the next with probability p"},
       {FaultKind::VioDuplicate, "vio-dup", {{"p", 0, 1}}, 1, "each ODOMETRY is sent twice with probability p"},
-      {FaultKind::VioRate, "vio-rate", {{"hz", 0.1, kMaxLinkRate_Hz}}, 1, "the VIO link carries at most hz ODOMETRY a second (the rest dropped)"},
+      {FaultKind::VioRate, "vio-rate", {{"hz", 0.1, kMaxLinkRate_Hz}}, 1, "the VIO link carries at most hz ODOMETRY a second of simulated time (the rest dropped)"},
   };
   return catalogue;
 }

@@ -74,7 +74,7 @@ class ClientServices {
   bool send_vio_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s,
                        const faults::ActiveFaults& faults = {});
   // --- the VIO link's faults (link_faults.h) ----------------------------------------------------
-  void set_vio_link_faults(const faults::LinkImpairment& impairment) { vio_faults_.set(impairment); }
+  void set_vio_link_faults(const faults::LinkImpairment& impairment, double sim_s) { vio_faults_.set(impairment, sim_s); }
   /// Sends the held ODOMETRY due by `now_s` (the run loop calls it between ticks).
   void release_vio_delayed(double now_s);
   std::optional<double> next_vio_delayed_s() const { return vio_faults_.next_due_s(); }

@@ -28,9 +28,9 @@ void LinkFaults::close_datagram(double now_s) {
                u_duplicate = uniform_(rng_);
   // Gilbert-Elliott: the channel moves between good and bad first; a datagram sent while bad is lost.
   bad_ = p_.burst_bad_p > 0 && (bad_ ? !(u_burst < p_.burst_good_p) : u_burst < p_.burst_bad_p);
-  // The rate limit: a bucket one datagram deep, filled at max_rate_hz.
-  if (last_close_s_) tokens_ = std::min(1.0, tokens_ + (now_s - *last_close_s_) * p_.max_rate_hz);
-  last_close_s_ = now_s;
+  // The rate limit: a bucket one datagram deep, filled at max_rate_hz over simulated time.
+  if (last_close_sim_s_) tokens_ = std::min(1.0, tokens_ + (sim_s_ - *last_close_sim_s_) * p_.max_rate_hz);
+  last_close_sim_s_ = sim_s_;
   const bool over_rate = p_.max_rate_hz > 0 && tokens_ < 1.0 - 1e-9;
   if (u_drop < p_.drop_p || bad_ || over_rate) {
     ++counts_.dropped;

@@ -40,12 +40,18 @@ class LinkFaults {
 
   /// `stream`: the link's own random stream ("hil-drop", "vio-link").
   LinkFaults(uint64_t seed, std::string_view stream);
-  /// What the active faults do now (from the fault schedule, every step).
-  void set(const faults::LinkImpairment& impairment) { p_ = impairment; }
+  /// What the active faults do now (from the fault schedule, every step), at the step's simulated
+  /// time: the rate limit counts simulated seconds (as the board's clock does in lockstep), so what
+  /// it drops depends on the steps, not on how fast they run.
+  void set(const faults::LinkImpairment& impairment, double sim_s) {
+    p_ = impairment;
+    sim_s_ = sim_s;
+  }
   /// True while frames must go through here: a fault is on, or datagrams are still held.
   bool holding() const { return p_.any() || !queue_.empty() || !open_.frames.empty() || held_back_; }
   void hold(std::span<const uint8_t> frame, std::optional<uint32_t> counted_id);
-  /// Closes the step's datagram: dropped, or due at now + delay + jitter (held back one under reorder).
+  /// Closes the step's datagram: dropped, or due at now + delay + jitter (held back one under reorder);
+  /// `now_s` is monotonic (the delays are wall time), the rate limit's time the step's (set()).
   void close_datagram(double now_s);
   /// Hands every datagram due by `now_s` to `send`, oldest first.
   void release_due(double now_s, const std::function<void(Datagram&)>& send);
@@ -66,7 +72,8 @@ class LinkFaults {
   std::optional<Datagram> held_back_;  ///< reorder: goes after the next datagram
   bool bad_ = false;                   ///< Gilbert-Elliott's state
   double tokens_ = 1;                  ///< the rate limit's bucket (one datagram deep)
-  std::optional<double> last_close_s_;
+  double sim_s_ = 0;                   ///< the step's simulated time (set())
+  std::optional<double> last_close_sim_s_;
   LinkFaultCounts counts_;
 };
 

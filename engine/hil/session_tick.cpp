@@ -88,8 +88,8 @@ void Session::Impl::apply_faults(EventSink& events) {
   }
   const auto& active = fault_schedule.active();
   for (std::size_t i = 0; i < active.motor_effectiveness.size(); ++i) model->set_motor_effectiveness(i, active.motor_effectiveness[i]);
-  stack->set_link_faults(active.hil_link);
-  services->set_vio_link_faults(active.vio_link);
+  stack->set_link_faults(active.hil_link, sim_time_s());
+  services->set_vio_link_faults(active.vio_link, sim_time_s());
   sensors->imu().set_noise_scale(active.imu_noise_scale);
   sensors->gps().set_noise_scale(active.gps_noise_scale);
   model->set_wind_event(frames::ned_to_enu(active.wind_NED_m_s), active.turbulence_sigma_m_s, active.turbulence_tau_s);

@@ -57,7 +57,7 @@ class StackLink {
   void forward(std::span<const uint8_t> bytes);
   void flush();
   // --- the HIL link's faults (link_faults.h) ---------------------------------------------------
-  void set_link_faults(const faults::LinkImpairment& impairment) { link_faults_.set(impairment); }
+  void set_link_faults(const faults::LinkImpairment& impairment, double sim_s) { link_faults_.set(impairment, sim_s); }
   /// Sends the held datagrams due by `now_s` (the run loop calls it between ticks).
   void release_delayed(double now_s);
   std::optional<double> next_delayed_s() const { return link_faults_.next_due_s(); }

@@ -19,12 +19,13 @@ struct Left {
 };
 
 /// `steps` datagrams, one per step (each frame: its step number), through `p`; what left, in order.
-std::vector<Left> run(const faults::LinkImpairment& p, int steps, LinkFaults& link) {
-  link.set(p);
+/// The steps run at `speed` times real time: simulated time k * step, wall time k * step / speed.
+std::vector<Left> run(const faults::LinkImpairment& p, int steps, LinkFaults& link, double speed = 1) {
   std::vector<Left> out;
   auto leave = [&](LinkFaults::Datagram& d) { out.push_back({d.frames[0][0] | d.frames[0][1] << 8, d.due_s}); };
   for (int k = 0; k < steps; ++k) {
-    const double now_s = k * kStep_s;
+    link.set(p, k * kStep_s);  // as the session does, every step
+    const double now_s = k * kStep_s / speed;
     const uint8_t frame[2] = {static_cast<uint8_t>(k & 0xff), static_cast<uint8_t>(k >> 8)};
     link.hold(frame, 1u);
     link.close_datagram(now_s);
@@ -57,6 +58,16 @@ TEST(LinkFaults, RateLimitPassesAtMostItsRate) {
   const auto left = run(p, 2500, link);  // 10 s
   EXPECT_NEAR(static_cast<double>(left.size()), 500.0, 2.0);
   for (std::size_t i = 1; i < left.size(); ++i) EXPECT_GE(left[i].seq - left[i - 1].seq, 5);
+}
+
+TEST(LinkFaults, RateLimitCountsSimulatedSecondsWhateverTheSpeed) {
+  faults::LinkImpairment p;
+  p.max_rate_hz = 50;
+  for (double speed : {0.5, 4.0}) {  // 10 s of simulated time in 20 s or 2.5 s of wall time
+    LinkFaults link(1, "test");
+    const auto left = run(p, 2500, link, speed);
+    EXPECT_NEAR(static_cast<double>(left.size()), 500.0, 2.0) << "at " << speed << "x";
+  }
 }
 
 TEST(LinkFaults, ReorderSwapsNeighboursDuplicateSendsTwice) {
