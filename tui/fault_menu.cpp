@@ -293,7 +293,7 @@ void draw_list(Screen& screen, const Rect& in, const FaultMenu& menu, const std:
   if (sel >= 0) {
     const auto& row = list[static_cast<std::size_t>(sel)];
     if (row.kind == FaultMenu::Row::Kind::Fault)
-      detail = faults::usage(*row.fault) + ": " + row.fault->meaning;
+      detail = faults::usage(*row.fault) + " - " + row.fault->meaning;
     else if (row.kind == FaultMenu::Row::Kind::Active)
       detail = "Enter or c ends every active " + row.active->name + " now (clear " + row.active->name + ").";
     else if (row.kind == FaultMenu::Row::Kind::ClearAll)
