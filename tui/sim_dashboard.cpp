@@ -166,17 +166,10 @@ DashboardModel SimDashboard::collect() {
   } else {
     m.state = "running";
   }
-  // Injected faults (--fault, --scenario, the x menu): listed in the menu, said on the state line
-  // with what is left of their duration.
-  for (const auto& r : s.faults) {
-    if (r.end_s) continue;
-    ActiveFault f{r.name, r.text(), r.start_s, std::nullopt};
-    if (r.duration_s) f.left_s = std::max(0.0, r.start_s + *r.duration_s - s.sim_time_s);
-    m.active_faults.push_back(std::move(f));
-  }
+  // Injected faults (--fault, --scenario, the x menu): listed in the menu, named on the state line.
+  m.active_faults = active_faults_from(s.faults, s.sim_time_s);
   if (!m.active_faults.empty()) {
-    m.state += "; faults:";
-    for (const auto& f : m.active_faults) m.state += " " + f.text + (f.left_s ? format(" (%.0f s left)", std::ceil(*f.left_s)) : "");
+    m.state += "; " + active_faults_text(m.active_faults);
     if (m.state_health == Health::Good) m.state_health = Health::Degraded;
   }
   m.clock = format("sim %.1f s  rtf %.2f", s.sim_time_s, s.recent_real_time_factor);

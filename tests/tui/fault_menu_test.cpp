@@ -8,6 +8,7 @@
 
 #include "tests/tui/render_screen.h"
 #include "tests/tui/sample_model.h"
+#include "tui/collect.h"
 #include "tui/fault_menu.h"
 #include "tui/keys.h"
 
@@ -247,6 +248,27 @@ TEST(FaultMenu, AnActiveFaultThatEndsWhileSelectedMovesTheSelectionOn) {
   // Everything ended: the selection lands on a catalogue fault and Enter does not clear.
   active.clear();
   EXPECT_EQ(menu.on_key(key(Key::Kind::Enter), active).command, std::nullopt);
+}
+
+// What the menu and the state line list: the session's records not ended, with what is left of
+// each duration; the state line names three and counts the rest.
+TEST(FaultMenu, ActiveFaultsComeFromTheSessionsRecords) {
+  const std::vector<faults::FaultRecord> records = {{"gps-loss", {}, 2.0, std::nullopt, 10.0},
+                                                     {"motor", {2, 0.6}, 3.0, std::nullopt, std::nullopt},
+                                                     {"hil-delay", {20}, 1.0, 4.0, std::nullopt},  // ended
+                                                     {"gps-jump", {20, 0}, 4.0, std::nullopt, 1.0}};
+  const auto active = active_faults_from(records, 6.5);
+  ASSERT_EQ(active.size(), 3u);
+  EXPECT_EQ(active[0].text, "gps-loss");
+  EXPECT_DOUBLE_EQ(active[0].left_s.value_or(-1), 5.5);
+  EXPECT_EQ(active[1].text, "motor:2,0.6");
+  EXPECT_EQ(active[1].name, "motor");
+  EXPECT_FALSE(active[1].left_s);
+  EXPECT_DOUBLE_EQ(active[2].left_s.value_or(-1), 0.0);  // due to end at the next step: never negative
+  EXPECT_EQ(active_faults_text(active), "faults: gps-loss (6 s left) motor:2,0.6 gps-jump:20,0 (0 s left)");
+  EXPECT_EQ(active_faults_text({}), "");
+  std::vector<ActiveFault> many(8, ActiveFault{"vio-dup", "vio-dup:0.1", 0, std::nullopt});
+  EXPECT_EQ(active_faults_text(many), "faults: vio-dup:0.1 vio-dup:0.1 vio-dup:0.1 +5 more (x lists them)");
 }
 
 // Drawing: the menu over the dashboard at 80x24 (a scrolling list) and on a large terminal.
