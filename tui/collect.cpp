@@ -1,8 +1,10 @@
 #include "tui/collect.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/telemetry/health.h"
+#include "tui/draw.h"
 
 namespace hitl::tui {
 
@@ -101,6 +103,27 @@ VehiclePanel vehicle_from(const vehicle::TelemetryFeedSnapshot& feed) {
   if (v.p_NED_m) panel.altitude_m = -(*v.p_NED_m)[2];
   else if (v.relative_alt_m) panel.altitude_m = v.relative_alt_m;
   return panel;
+}
+
+std::vector<ActiveFault> active_faults_from(const std::vector<faults::FaultRecord>& records, double sim_time_s) {
+  std::vector<ActiveFault> out;
+  for (const auto& r : records) {
+    if (r.end_s) continue;
+    ActiveFault f{r.name, r.text(), r.start_s, std::nullopt};
+    if (r.duration_s) f.left_s = std::max(0.0, r.start_s + *r.duration_s - sim_time_s);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+std::string active_faults_text(const std::vector<ActiveFault>& active) {
+  constexpr std::size_t kNamed = 3;  // the header has little room; the x menu lists them all
+  if (active.empty()) return "";
+  std::string out = "faults:";
+  for (std::size_t i = 0; i < active.size() && i < kNamed; ++i)
+    out += " " + active[i].text + (active[i].left_s ? format(" (%.0f s left)", std::ceil(*active[i].left_s)) : "");
+  if (active.size() > kNamed) out += format(" +%zu more (x lists them)", active.size() - kNamed);
+  return out;
 }
 
 }  // namespace hitl::tui

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "base/common/clock.h"
+#include "tui/fault_menu.h"
 #include "tui/keys.h"
 #include "tui/layout.h"
 #include "tui/panels.h"
@@ -52,6 +53,7 @@ Expected<DashboardEnd> run_dashboard(DashboardSource& source, DashboardActions* 
       }
       const Rect messages = layout_for(screen.width(), screen.height(), model).messages.inner();
       dispatcher.set_messages_view(message_row_count(model.messages, messages.w), messages.h);
+      dispatcher.set_fault_menu_rows(fault_menu_page_rows(screen.width(), screen.height()));
       const auto result = dispatcher.on_key(key, model, actions);
       if (result.note) source.note(Severity::Notice, *result.note);
       quit = result.quit;

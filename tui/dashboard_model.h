@@ -136,6 +136,14 @@ struct GraphsPanel {
   std::vector<RateGraph> rates;
 };
 
+/// A fault active now (the sim dashboard; docs/faults.md): the fault menu lists them to clear.
+struct ActiveFault {
+  std::string name;              ///< "motor": what `clear NAME` ends
+  std::string text;              ///< "motor:2,0.6", as the status lines name it
+  double started_s = 0;          ///< simulated time
+  std::optional<double> left_s;  ///< of its duration; none: until cleared (or its scenario's end_when)
+};
+
 struct DashboardModel {
   std::string title;               ///< "hitl sim", "hitl inspect"
   std::string state;               ///< "running", "PAUSED", ...
@@ -155,6 +163,7 @@ struct DashboardModel {
   std::string busy;                ///< an action in flight, for the footer ("arming ...")
   std::optional<LogLine> outcome;  ///< the last key's outcome, pinned in the header
   std::optional<GraphsPanel> graphs;  ///< the sim's rolling graphs, drawn when the terminal has room
+  std::vector<ActiveFault> active_faults;  ///< oldest first (the sim dashboard's; named on the state line too)
 };
 
 }  // namespace hitl::tui

@@ -91,8 +91,17 @@ Dispatcher::Result Dispatcher::request(Action action, const DashboardModel& mode
 Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& model, DashboardActions* actions) {
   if (key.kind == Key::Kind::None || key.kind == Key::Kind::Resize) return {};
   // The messages scroll while typing a shell command too (to read its output).
-  if (interaction_.mode != Interaction::Mode::Confirm && interaction_.mode != Interaction::Mode::Help && scroll(key)) return {};
+  const auto mode = interaction_.mode;
+  if (mode != Interaction::Mode::Confirm && mode != Interaction::Mode::Help && mode != Interaction::Mode::FaultMenu && scroll(key))
+    return {};
   switch (interaction_.mode) {
+    case Interaction::Mode::FaultMenu: {
+      const auto r = interaction_.fault_menu.on_key(key, model.active_faults);
+      if (!r.close) return {};
+      enter(Interaction::Mode::Normal);
+      if (r.command) return start(Action::Fault, *r.command, actions);
+      return {};
+    }
     case Interaction::Mode::Help:
       enter(Interaction::Mode::Normal);
       return {};
@@ -113,7 +122,7 @@ Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& mode
           enter(Interaction::Mode::Normal);
           const auto first = line.find_first_not_of(' ');
           if (first == std::string::npos) return {};
-          return start(prompt_action_, line.substr(first), actions);
+          return start(Action::Shell, line.substr(first), actions);
         }
         case Key::Kind::Backspace:
           if (!interaction_.input.empty()) interaction_.input.pop_back();
@@ -141,13 +150,11 @@ Dispatcher::Result Dispatcher::on_key(const Key& key, const DashboardModel& mode
     case 'f': return request(Action::FlyTrajectory, model, actions);
     case 's':
       if (actions == nullptr || actions->refusal(Action::Shell)) return start(Action::Shell, "", actions);
-      prompt_action_ = Action::Shell;
       enter(Interaction::Mode::Prompt, "", "shell (Enter runs, Esc cancels)> ");
       return {};
     case 'x':
       if (actions == nullptr || actions->refusal(Action::Fault)) return start(Action::Fault, "", actions);
-      prompt_action_ = Action::Fault;
-      enter(Interaction::Mode::Prompt, "", "fault: NAME[:ARGS][+DUR] starts now, clear [NAME] ends (docs/faults.md)> ");
+      enter(Interaction::Mode::FaultMenu);
       return {};
     default: return {};
   }

@@ -1,7 +1,7 @@
 // The keyboard: raw input decoded to keys once (the screen does it), then one dispatcher that
 // turns keys into actions (btop's Input::get / Input::process). The dispatcher holds what the
 // keyboard is in the middle of: the help overlay, a confirmation (disarm in the air, reset while
-// armed, stopping a trajectory) or the one-line shell prompt.
+// armed, stopping a trajectory), the one-line shell prompt or the fault menu (fault_menu.h).
 #pragma once
 
 #include <optional>
@@ -9,16 +9,10 @@
 
 #include "tui/actions.h"
 #include "tui/dashboard_model.h"
+#include "tui/key.h"
 #include "tui/render.h"
 
 namespace hitl::tui {
-
-struct Key {
-  enum class Kind { None, Char, Enter, Escape, Backspace, Resize, PageUp, PageDown, Home, End };
-  Kind kind = Kind::None;
-  char ch = 0;  ///< Char: a printable ASCII character
-  static Key character(char c) { return {Kind::Char, c}; }
-};
 
 class Dispatcher {
  public:
@@ -33,6 +27,8 @@ class Dispatcher {
   const Interaction& interaction() const { return interaction_; }
   /// The messages panel as drawn now: rows in all, rows shown (the loop sets it before each key).
   void set_messages_view(int total_rows, int page_rows);
+  /// The fault menu's list rows on the screen now (the loop sets it before each key).
+  void set_fault_menu_rows(int rows) { interaction_.fault_menu.set_page_rows(rows); }
 
   static constexpr std::size_t kMaxCommandLength = 200;
 
@@ -46,7 +42,6 @@ class Dispatcher {
 
   Interaction interaction_;
   std::optional<Action> pending_;  ///< what y confirms
-  Action prompt_action_ = Action::Shell;  ///< what Enter in the prompt runs
   int message_rows_ = 0, message_page_ = 0;
 };
 

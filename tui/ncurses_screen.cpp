@@ -124,6 +124,8 @@ Key NcursesScreen::read_key(int timeout_ms) {
     case KEY_NPAGE: return {Key::Kind::PageDown, 0};
     case KEY_HOME: return {Key::Kind::Home, 0};
     case KEY_END: return {Key::Kind::End, 0};
+    case KEY_UP: return {Key::Kind::Up, 0};
+    case KEY_DOWN: return {Key::Kind::Down, 0};
     case 27: return {Key::Kind::Escape, 0};
     case '\n':
     case '\r':

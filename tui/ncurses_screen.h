@@ -4,7 +4,7 @@
 // on colour alone.
 #pragma once
 
-#include "tui/keys.h"
+#include "tui/key.h"
 #include "tui/screen.h"
 
 namespace hitl::tui {

@@ -23,7 +23,7 @@ constexpr KeyHelp kActionKeys[] = {
     {'t', "takeoff", "take off"}, {'l', "land", "land"},
     {'p', "pause", "pause / resume"}, {'r', "reset", "reset to home (asks when armed)"},
     {'f', "fly", "fly the -t trajectory"}, {'s', "shell", "one shell command"},
-    {'x', "fault", "start a fault now or clear one"}};
+    {'x', "fault", "the fault menu: start, clear"}};
 
 /// The footer: the keys that work on this dashboard, the scroll keys while they fit, help, quit.
 std::string key_hints(const std::string& keys, int width) {
@@ -112,6 +112,9 @@ void draw_footer(Screen& screen, const Rect& r, const DashboardModel& m, const I
       put(screen, r, r.x, r.y, fit(shown + "_", r.w), {Color::Accent, true, false});
       return;
     }
+    case Interaction::Mode::FaultMenu:
+      put(screen, r, r.x, r.y, fit(fault_menu_hints(in.fault_menu), r.w), {Color::Accent, true, false});
+      return;
     case Interaction::Mode::Normal:
     case Interaction::Mode::Help:
       put(screen, r, r.x, r.y, fit(key_hints(m.keys, r.w), r.w), {Color::Dim, false, false});
@@ -165,6 +168,7 @@ void render(Screen& screen, const DashboardModel& model, const Interaction& inte
   if (!l.messages.empty()) draw_messages(screen, l.messages, model.messages, interaction.messages_top);
   draw_footer(screen, l.footer, model, interaction);
   if (interaction.mode == Interaction::Mode::Help) draw_help(screen, model.keys);
+  if (interaction.mode == Interaction::Mode::FaultMenu) draw_fault_menu(screen, interaction.fault_menu, model.active_faults);
   if (interaction.mode == Interaction::Mode::Confirm && static_cast<int>(interaction.question.size()) + 7 > l.footer.w)
     draw_question(screen, interaction.question);
   screen.flush();

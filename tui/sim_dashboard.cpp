@@ -166,9 +166,10 @@ DashboardModel SimDashboard::collect() {
   } else {
     m.state = "running";
   }
-  if (!s.active_faults.empty()) {  // injected faults (--fault, --scenario): said on the state line
-    m.state += "; faults:";
-    for (const auto& f : s.active_faults) m.state += " " + f;
+  // Injected faults (--fault, --scenario, the x menu): listed in the menu, named on the state line.
+  m.active_faults = active_faults_from(s.faults, s.sim_time_s);
+  if (!m.active_faults.empty()) {
+    m.state += "; " + active_faults_text(m.active_faults);
     if (m.state_health == Health::Good) m.state_health = Health::Degraded;
   }
   m.clock = format("sim %.1f s  rtf %.2f", s.sim_time_s, s.recent_real_time_factor);

@@ -16,9 +16,15 @@ std::string compact(double v) {
   return buf;
 }
 
-std::string label(const FaultSpec& spec) { return spec.args.empty() ? spec.name() : spec.name() + ":" + spec.args_text(); }
+std::string label(const FaultSpec& spec) { return FaultRecord{spec.name(), spec.args}.text(); }
 
 }  // namespace
+
+std::string FaultRecord::text() const {
+  FaultSpec spec;
+  spec.args = args;
+  return args.empty() ? name : name + ":" + spec.args_text();
+}
 
 std::string FaultChange::text() const {
   char t[48];
@@ -60,7 +66,7 @@ std::vector<FaultChange> FaultSchedule::update(double t_s, const VehicleObservat
       e.state = State::Active;
       e.started_s = t_s;
       e.record = records_.size();
-      records_.push_back({e.spec.name(), e.spec.args, t_s, std::nullopt});
+      records_.push_back({e.spec.name(), e.spec.args, t_s, std::nullopt, e.spec.duration_s});
       changes.push_back({true, e.spec, t_s});
     }
     const bool duration_over = e.spec.duration_s && t_s + kTimeEpsilon_s >= e.started_s + *e.spec.duration_s;

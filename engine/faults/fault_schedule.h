@@ -90,6 +90,9 @@ struct FaultRecord {
   std::vector<double> args;
   double start_s = 0;
   std::optional<double> end_s;  ///< none: still active when the session ended
+  std::optional<double> duration_s;  ///< as it was given (none: to end_when or the session's end)
+  /// "gps-loss", "motor:2,0.6" (as the status lines and active_faults name it)
+  std::string text() const;
 };
 
 struct FaultChange {

@@ -51,6 +51,14 @@ enum class FaultKind {
   VioDrop, VioDelay, VioBurst, VioJitter, VioReorder, VioDuplicate, VioRate,
 };
 
+/// Where a fault happens, for listing them by kind (the dashboard's fault menu), in this order.
+enum class FaultGroup { Vehicle, Imu, Mag, Baro, Gps, Vio, Environment, HilLink, VioLink, Board };
+/// "vehicle", "IMU", "mag", "baro", "GPS", "VIO", "environment", "HIL link", "VIO link", "board"
+const char* to_string(FaultGroup group);
+constexpr FaultGroup kFaultGroups[] = {FaultGroup::Vehicle, FaultGroup::Imu,     FaultGroup::Mag,         FaultGroup::Baro,
+                                       FaultGroup::Gps,     FaultGroup::Vio,     FaultGroup::Environment, FaultGroup::HilLink,
+                                       FaultGroup::VioLink, FaultGroup::Board};
+
 struct FaultArg {
   const char* name;  ///< with its unit: "north_m", "pa_per_s"
   double min;
@@ -60,9 +68,14 @@ struct FaultArg {
 
 struct FaultInfo {
   FaultKind kind;
+  FaultGroup group;
   const char* name;  ///< "gps-loss"
   std::vector<FaultArg> args;
   std::size_t required_args;  ///< the rest are optional
+  /// What follows the name in a typical use, as typed live (`:2,0.75`, `:5,0+6`, "" for none):
+  /// values known to show an effect (bench/faults/fault_matrix.sh flies them); the dashboard's
+  /// fault menu starts from it.
+  const char* example;
   const char* meaning;        ///< one line: what it does where
   bool needs_duration = false;  ///< its shape spans its duration (gust)
 };

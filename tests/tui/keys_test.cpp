@@ -144,25 +144,35 @@ TEST(Keys, ShellPrompt) {
   EXPECT_EQ(d.interaction().input.size(), Dispatcher::kMaxCommandLength);
 }
 
-TEST(Keys, FaultPromptStartsOrClearsWhatIsTyped) {
+// x opens the fault menu (fault_menu_test.cpp has its keys); what it starts goes through the same
+// Action::Fault the typed prompt gave, and the shell's prompt is still the shell's.
+TEST(Keys, XOpensTheFaultMenuWhoseCommandsAreFaultActions) {
   Dispatcher d;
   FakeActions a;
   const auto m = on_ground();
   d.on_key(Key::character('x'), m, &a);
-  ASSERT_EQ(d.interaction().mode, Interaction::Mode::Prompt);
-  EXPECT_NE(d.interaction().label.find("fault"), std::string::npos);
+  ASSERT_EQ(d.interaction().mode, Interaction::Mode::FaultMenu);
+  // The typed form inside the menu: `:` then the line.
+  d.on_key(Key::character(':'), m, &a);
   for (char c : std::string("gps-loss+10")) d.on_key(Key::character(c), m, &a);
   d.on_key({Key::Kind::Enter, 0}, m, &a);
   ASSERT_EQ(a.done.size(), 1u);
   EXPECT_EQ(a.done[0].first, Action::Fault);
   EXPECT_EQ(a.done[0].second, "gps-loss+10");
-  // The shell's prompt is still the shell's.
+  EXPECT_EQ(d.interaction().mode, Interaction::Mode::Normal);
+  // Keys in the menu are the menu's: q filters, PgUp moves the list, not the messages.
+  d.on_key(Key::character('x'), m, &a);
+  EXPECT_FALSE(d.on_key(Key::character('q'), m, &a).quit);
+  d.on_key({Key::Kind::PageUp, 0}, m, &a);
+  EXPECT_FALSE(d.interaction().messages_top);
+  d.on_key({Key::Kind::Escape, 0}, m, &a);
+  EXPECT_EQ(d.interaction().mode, Interaction::Mode::Normal);
   d.on_key(Key::character('s'), m, &a);
   d.on_key(Key::character('v'), m, &a);
   d.on_key({Key::Kind::Enter, 0}, m, &a);
   ASSERT_EQ(a.done.size(), 2u);
   EXPECT_EQ(a.done[1].first, Action::Shell);
-  // Refused where there is no simulator: said, no prompt.
+  // Refused where there is no simulator: said, no menu.
   a.refuse = Action::Fault;
   const auto r = d.on_key(Key::character('x'), m, &a);
   EXPECT_EQ(d.interaction().mode, Interaction::Mode::Normal);

@@ -11,7 +11,10 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 #include <thread>
+
+#include <nlohmann/json.hpp>
 
 #include "tests/support/process.h"
 #include "tests/support/tmux.h"
@@ -213,29 +216,86 @@ TEST(TuiE2E, FKeyFliesTheTrajectoryInProcess) {
   setup.board.wait(10s);
 }
 
-TEST(TuiE2E, XKeyStartsAndClearsAFaultLive) {
+/// The pane's whole text, wrapped lines joined and its history included (a JSON line is long).
+std::string whole_pane(Tmux& tmux) { return tmux.run({"capture-pane", "-p", "-J", "-S", "-", "-t", "t"}); }
+
+// `x` opens the fault menu, at 80x24: pick gps-loss by typing its name, start it for 30 s from its
+// line, see it on the state line, in the messages and in the menu's active faults, clear it from
+// the menu; bad arguments are refused in the menu with the catalogue's message; the summary's
+// `faults` and the recording's STATUSTEXT have the start and the end.
+TEST(TuiE2E, XKeyMenuStartsAndClearsAFaultLive) {
   const std::string tmux_bin = tmux_path();
   if (tmux_bin.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
   SimAgainstTarget setup;
   ASSERT_TRUE(setup.board.wait_for_stderr("EMULATED", 10s)) << setup.board.err();
+  const std::string tlog = ::testing::TempDir() + "tui_fault_menu_" + std::to_string(::getpid()) + ".tlog";
   Tmux tmux(tmux_bin, "tui-fault");
-  tmux.start(setup.sim_command("--lockstep"));
+  tmux.start(setup.sim_command("--lockstep --json --record " + shell_quoted(tlog)), 80, 24);
   std::string s;
-  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("Data paths") != std::string::npos; }, 20s, &s)) << s;
+  auto shows = [&](const std::string& text, std::chrono::seconds timeout = 10s) {
+    return tmux.until([&](const std::string& x) { return x.find(text) != std::string::npos; }, timeout, &s);
+  };
+  ASSERT_TRUE(shows("Data paths", 20s)) << s;
   tmux.keys({"x"});
-  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("fault: NAME") != std::string::npos; }, 10s, &s)) << s;
-  tmux.keys({"motor:2,0.5", "Enter"});
-  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("fault motor:2,0.5 started") != std::string::npos; }, 10s, &s)) << s;
-  EXPECT_NE(s.find("faults: motor:2,0.5"), std::string::npos) << s;  // the state line
+  ASSERT_TRUE(shows("Faults: start or clear")) << s;
+  EXPECT_NE(s.find("Vehicle"), std::string::npos) << s;
+  EXPECT_EQ(s.find("Active faults"), std::string::npos) << s;  // none yet
+  tmux.keys({"gps-loss"});
+  ASSERT_TRUE(shows("filter: gps-loss_")) << s;
+  EXPECT_NE(s.find("no HIL_GPS is sent"), std::string::npos) << s;
+  tmux.keys({"Enter"});
+  ASSERT_TRUE(shows("> gps-loss_")) << s;
+  EXPECT_NE(s.find("Start gps-loss (GPS)"), std::string::npos) << s;
+  tmux.keys({"+30", "Enter"});
+  // On the state line with what is left of it, and its start in the messages (wrapped at 80 columns).
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return std::regex_search(x, std::regex(R"(faults: gps-loss \(\d+ s left\))")); }, 10s, &s))
+      << s;
+  ASSERT_TRUE(shows("started (30 s)")) << s;
+  EXPECT_EQ(s.find("Faults: start or clear"), std::string::npos) << s;  // closed
+
+  // Refused in the menu: the catalogue's message, nothing started, the menu open.
   tmux.keys({"x"});
-  tmux.keys({"clear motor", "Enter"});
-  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("fault motor:2,0.5 ended") != std::string::npos; }, 10s, &s)) << s;
-  tmux.keys({"x"});
-  tmux.keys({"motor:9,1", "Enter"});  // refused, said
-  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("fault: 'motor:9,1'") != std::string::npos; }, 10s, &s)) << s;
+  ASSERT_TRUE(shows("Active faults (1)")) << s;
+  EXPECT_TRUE(std::regex_search(s, std::regex(R"(gps-loss +since [0-9.]+ s, [0-9.]+ s left)"))) << s;
+  tmux.keys({"motor"});
+  ASSERT_TRUE(shows("filter: motor_")) << s;
+  tmux.keys({"Enter"});
+  ASSERT_TRUE(shows("> motor:2,0.75_")) << s;
+  tmux.keys({"BSpace", "BSpace", "BSpace", "BSpace", "9", "Enter"});
+  ASSERT_TRUE(shows("k must be within 0..2 (got 9)")) << s;
+  EXPECT_NE(s.find("Faults: start one now"), std::string::npos) << s;
+  EXPECT_EQ(s.substr(0, s.find('\n')).find("motor"), std::string::npos) << s;  // not on the state line
+  tmux.keys({"Escape"});
+  ASSERT_TRUE(shows("filter: motor_")) << s;
+  tmux.keys({"BSpace", "BSpace", "BSpace", "BSpace", "BSpace"});
+  ASSERT_TRUE(shows("type to filter")) << s;
+
+  // Enter on the active fault clears it.
+  tmux.keys({"Home", "Enter"});
+  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("faults: gps-loss") == std::string::npos; }, 10s, &s)) << s;
+  ASSERT_TRUE(shows("ended")) << s;
+
   tmux.keys({"q"});
-  ASSERT_TRUE(tmux.until([](const std::string& x) { return x.find("HITL_EXIT=") != std::string::npos; }, 30s, &s)) << s;
-  EXPECT_NE(s.find("HITL_EXIT=0"), std::string::npos) << s;
+  ASSERT_TRUE(shows("HITL_EXIT=", 30s)) << s;
+  const std::string pane = whole_pane(tmux);
+  EXPECT_NE(pane.find("HITL_EXIT=0"), std::string::npos) << pane;
+  // The summary (--json): one gps-loss with its start and end, and nothing else started.
+  std::optional<nlohmann::json> summary;
+  std::istringstream lines(pane);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("{", 0) == 0 && line.find("\"faults\"") != std::string::npos) summary = nlohmann::json::parse(line, nullptr, false);
+  ASSERT_TRUE(summary && !summary->is_discarded()) << pane;
+  const auto& faults = (*summary)["faults"];
+  ASSERT_EQ(faults.size(), 1u) << faults.dump();
+  EXPECT_EQ(faults[0]["name"], "gps-loss");
+  ASSERT_TRUE(faults[0]["end_s"].is_number()) << faults.dump();
+  EXPECT_LT(faults[0]["end_s"].get<double>() - faults[0]["start_s"].get<double>(), 30.0);  // cleared before its 30 s
+  // The recording has the simulator's STATUSTEXT for both.
+  std::ifstream in(tlog, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(bytes.find("fault gps-loss started (30 s)"), std::string::npos);
+  EXPECT_NE(bytes.find("fault gps-loss ended"), std::string::npos);
+  std::remove(tlog.c_str());
   setup.board.signal(SIGINT);
   setup.board.wait(10s);
 }

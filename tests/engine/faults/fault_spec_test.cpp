@@ -196,6 +196,29 @@ TEST(FaultSchedule, FaultsStartedAndClearedByHand) {
   ASSERT_EQ(c.size(), 1u);
   EXPECT_FALSE(schedule.active().gps_loss);
   EXPECT_TRUE(schedule.clear("", 13).empty());  // nothing left to clear
+  // The records keep each fault's duration (the dashboard shows what is left of it).
+  ASSERT_EQ(schedule.records().size(), 2u);
+  EXPECT_FALSE(schedule.records()[0].duration_s);
+  EXPECT_DOUBLE_EQ(schedule.records()[1].duration_s.value_or(0), 2.5);
+}
+
+// The catalogue as the dashboard's menu lists it: every fault in a group, and its example as typed
+// starts it (the menu pre-fills it).
+TEST(FaultSpec, EveryFaultHasAGroupAndAnExampleThatStartsIt) {
+  for (const auto& f : fault_catalogue()) {
+    SCOPED_TRACE(f.name);
+    bool listed = false;
+    for (const auto g : kFaultGroups) listed = listed || g == f.group;
+    EXPECT_TRUE(listed);
+    EXPECT_STRNE(to_string(f.group), "?");
+    const auto spec = parse_live_fault(std::string(f.name) + f.example);
+    ASSERT_TRUE(spec) << spec.error().message;
+    EXPECT_EQ(spec->kind, f.kind);
+    EXPECT_EQ(spec->args.size(), f.required_args) << "the example gives the required arguments";
+  }
+  EXPECT_EQ(info(FaultKind::HilDuplicate).group, FaultGroup::HilLink);
+  EXPECT_EQ(info(FaultKind::ActuatorsStale).group, FaultGroup::Board);
+  EXPECT_STREQ(info(FaultKind::Gust).example, ":5,0+6");  // needs a duration: its example has one
 }
 
 }  // namespace
