@@ -171,10 +171,9 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
               s.max_rebound_m, static_cast<unsigned long long>(s.imu_accel_saturated),
               static_cast<unsigned long long>(s.imu_gyro_saturated), static_cast<unsigned long long>(s.lockstep_late_answers));
   for (const auto& r : s.faults) {
-    std::string args;
-    for (std::size_t i = 0; i < r.args.size(); ++i) args += (i ? "," : ":") + nlohmann::json(r.args[i]).dump();
-    if (r.end_s) std::printf("fault %s%s: %.3f s to %.3f s\n", r.name.c_str(), args.c_str(), r.start_s, *r.end_s);
-    else std::printf("fault %s%s: from %.3f s to the end\n", r.name.c_str(), args.c_str(), r.start_s);
+    const std::string given = r.text();  // as the status lines and --fault write it: motor:2,0.6
+    if (r.end_s) std::printf("fault %s: %.3f s to %.3f s\n", given.c_str(), r.start_s, *r.end_s);
+    else std::printf("fault %s: from %.3f s to the end\n", given.c_str(), r.start_s);
   }
   for (const auto& [name, c] : {std::pair{"HIL", s.hil_link_faults}, std::pair{"VIO", s.vio_link_faults}})
     if (c.dropped + c.delayed + c.reordered + c.duplicated > 0)

@@ -139,5 +139,15 @@ TEST(FaultsE2E, BadFaultsAreRefusedWithExitTwoNamingTheProblem) {
   }
 }
 
+TEST(FaultsE2E, TheTextSummaryWritesEachFaultAsItWasGiven) {
+  // No board needed: the session runs its 3 s in real time and sends into the void.
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(test::free_udp_port()),
+                     "--local-port", "0", "--no-vio", "--clients", "0", "--duration", "1.5", "--fault", "motor:2,0.6@0.5",
+                     "--fault", "hil-delay:15@1+0.25"});
+  ASSERT_EQ(sim.wait(30s), 0) << sim.err();
+  EXPECT_NE(sim.out().find("fault motor:2,0.6: from 0.500 s to the end"), std::string::npos) << sim.out();
+  EXPECT_NE(sim.out().find("fault hil-delay:15: 1.000 s to 1.25"), std::string::npos) << sim.out();  // ends on the step after
+}
+
 }  // namespace
 }  // namespace hitl
