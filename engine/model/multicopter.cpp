@@ -40,7 +40,6 @@ struct Multicopter::Impl {
         world(world_config),
         matter(system),
         forces(system),
-        gravity(forces, matter, SimTK::Vec3(0, 0, -world_config.gravity_m_s2)),
         wind(world_config.wind, seed) {
     substeps = std::max(1, static_cast<int>(std::ceil(world.physics.step_s / world.physics.max_substep_s - 1e-9)));
     inputs.substep_s = world.physics.step_s / substeps;
@@ -56,7 +55,7 @@ struct Multicopter::Impl {
       SimTK::MobilizedBody::Pin rotor(base, SimTK::Transform(to_simtk(rc.position_FLU_m)), rotor_body, SimTK::Transform());
       rotor_index[i] = rotor.getMobilizedBodyIndex();
     }
-    force_elements = new MulticopterForces(vehicle, matter, base_index, rotor_index, inputs);
+    force_elements = new MulticopterForces(vehicle, world.gravity_m_s2, matter, base_index, rotor_index, inputs);
     SimTK::Force::Custom(forces, force_elements);  // the force subsystem owns force_elements
     system.realizeTopology();
     std::array<SimTK::UIndex, 4> rotor_u;
@@ -274,7 +273,6 @@ struct Multicopter::Impl {
   SimTK::MultibodySystem system;
   SimTK::SimbodyMatterSubsystem matter;
   SimTK::GeneralForceSubsystem forces;
-  SimTK::Force::UniformGravity gravity;
   SimTK::MobilizedBodyIndex base_index;
   std::array<SimTK::MobilizedBodyIndex, 4> rotor_index;
   ForceInputs inputs;

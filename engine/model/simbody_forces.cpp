@@ -15,11 +15,19 @@ void apply_force_at_point(SimTK::MobilizedBodyIndex body, const SimTK::Rotation&
 
 }  // namespace
 
-MulticopterForces::MulticopterForces(const VehicleConfig& vehicle, const SimTK::SimbodyMatterSubsystem& matter,
+MulticopterForces::MulticopterForces(const VehicleConfig& vehicle, double gravity_m_s2,
+                                     const SimTK::SimbodyMatterSubsystem& matter,
                                      SimTK::MobilizedBodyIndex base,
                                      const std::array<SimTK::MobilizedBodyIndex, 4>& rotors, const ForceInputs& inputs)
-    : vehicle_(vehicle), contacts_(contact_points(vehicle.landing_gear)), base_(matter.getMobilizedBody(base)), inputs_(inputs) {
+    : vehicle_(vehicle), g_ENU_m_s2_(0.0, 0.0, -gravity_m_s2), contacts_(contact_points(vehicle.landing_gear)), base_(matter.getMobilizedBody(base)), inputs_(inputs) {
   for (std::size_t i = 0; i < rotors.size(); ++i) rotors_[i] = &matter.getMobilizedBody(rotors[i]);
+}
+
+void MulticopterForces::add_gravity(SimTK::MobilizedBodyIndex body, double mass_kg, const SimTK::Rotation& R_G_B,
+                                    SimTK::Vector_<SimTK::SpatialVec>& body_forces) const {
+  const SimTK::Vec3 com_G = R_G_B * SimTK::Vec3(0);
+  const SimTK::Vec3 f_G = mass_kg * g_ENU_m_s2_;
+  body_forces[body] += SimTK::SpatialVec(com_G % f_G, f_G);
 }
 
 void MulticopterForces::calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
@@ -32,6 +40,16 @@ void MulticopterForces::calcForce(const SimTK::State& state, SimTK::Vector_<SimT
   const SimTK::Vector& u = state.getU();
   const Eigen::Vector3d wind_ENU_m_s = inputs_.wind_ENU_m_s;
   const double h_s = inputs_.substep_s;
+
+  // Gravity first, body by body in index order, with Force::UniformGravity's arithmetic (a force
+  // at the mass centre, which is each body's origin here), so the sums come out as they did when
+  // it was a separate Simbody force element.
+  add_gravity(base_index, vehicle_.base.mass_kg, R_FLU_to_ENU, body_forces);
+  std::array<const SimTK::Transform*, 4> X_ENU_R;
+  for (std::size_t i = 0; i < rotors_.size(); ++i) {
+    X_ENU_R[i] = &rotors_[i]->getBodyTransform(state);
+    add_gravity(rotors_[i]->getMobilizedBodyIndex(), vehicle_.rotors[i].mass_kg, X_ENU_R[i]->R(), body_forces);
+  }
 
   for (std::size_t i = 0; i < rotors_.size(); ++i) {
     const RotorConfig& rc = vehicle_.rotors[i];
@@ -46,12 +64,11 @@ void MulticopterForces::calcForce(const SimTK::State& state, SimTK::Vector_<SimT
     mobility_forces[rotor_u_[i]] += torque_Nm;
 
     // Aerodynamics at the hub; axis = rotor +z (= frame +z) in ENU.
-    const SimTK::Transform& X_ENU_R = rotor.getBodyTransform(state);
-    const Eigen::Vector3d axis_ENU = to_eigen(X_ENU_R.z());
+    const Eigen::Vector3d axis_ENU = to_eigen(X_ENU_R[i]->z());
     const Eigen::Vector3d v_hub_ENU_m_s = to_eigen(rotor.getBodyVelocity(state)[1]);
     const RotorLoads loads = scaled_rotor_loads(rotor_loads(rc, omega_pin_rad_s, axis_ENU, v_hub_ENU_m_s - wind_ENU_m_s),
                                                 inputs_.effectiveness[i]);
-    apply_force_at_point(rotor.getMobilizedBodyIndex(), X_ENU_R.R(), SimTK::Vec3(0), to_simtk(loads.force_at_hub_ENU_N),
+    apply_force_at_point(rotor.getMobilizedBodyIndex(), X_ENU_R[i]->R(), SimTK::Vec3(0), to_simtk(loads.force_at_hub_ENU_N),
                          body_forces);
     body_forces[base_index][0] += to_simtk(loads.torque_on_frame_ENU_Nm);
   }

@@ -1,5 +1,5 @@
 // PRIVATE to engine/model (includes Simbody): the x500's applied forces as one Simbody custom
-// force: motor torques on the rotor pins, rotor thrust/drag at the hubs, yaw drag torque and
+// force: gravity (as Simbody's Force::UniformGravity computes it), motor torques on the rotor pins, rotor thrust/drag at the hubs, yaw drag torque and
 // rolling moment on the frame, linear body drag, an external force, and the ground contact
 // (legs and frame points).
 #pragma once
@@ -35,7 +35,7 @@ class MulticopterForces : public SimTK::Force::Custom::Implementation {
  public:
   /// Build after every body is in `matter` (the handles are kept); call set_rotor_u_indices() once
   /// the model is realised, before the first evaluation.
-  MulticopterForces(const VehicleConfig& vehicle, const SimTK::SimbodyMatterSubsystem& matter,
+  MulticopterForces(const VehicleConfig& vehicle, double gravity_m_s2, const SimTK::SimbodyMatterSubsystem& matter,
                     SimTK::MobilizedBodyIndex base, const std::array<SimTK::MobilizedBodyIndex, 4>& rotors,
                     const ForceInputs& inputs);
   /// Where each rotor pin's generalized speed sits in the state's u (fixed once the model is realised).
@@ -46,7 +46,11 @@ class MulticopterForces : public SimTK::Force::Custom::Implementation {
   SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
 
  private:
+  void add_gravity(SimTK::MobilizedBodyIndex body, double mass_kg, const SimTK::Rotation& R_G_B,
+                   SimTK::Vector_<SimTK::SpatialVec>& body_forces) const;
+
   VehicleConfig vehicle_;
+  SimTK::Vec3 g_ENU_m_s2_;
   std::array<ContactPoint, kContactPoints> contacts_;
   const SimTK::MobilizedBody& base_;
   std::array<const SimTK::MobilizedBody*, 4> rotors_;
