@@ -129,11 +129,11 @@ struct Multicopter::Impl {
     const SimTK::Vector& u0 = state.getU();
     const SimTK::Vector& udot0 = state.getUDot();
     for (int i = 0; i < u0.size(); ++i) next_u[i] = u0[i] + h_s * udot0[i];
-    state.updU() = next_u;  // invalidates Velocity and above; q0 stays realised for N(q0)
-    system.multiplyByN(state, state.getU(), qdot);
+    system.multiplyByN(state, next_u, qdot);  // N(q0) u1, q0 still realised
     const SimTK::Vector& q0 = state.getQ();
     for (int i = 0; i < q0.size(); ++i) next_q[i] = q0[i] + h_s * qdot[i];
-    state.updQ() = next_q;
+    state.updQ() = next_q;  // each upd* invalidates its stage and above
+    state.updU() = next_u;
     state.updTime() = t1_s;
     system.realize(state, SimTK::Stage::Position);
     SimTK::ProjectResults results;
