@@ -102,9 +102,8 @@ struct Multicopter::Impl {
     integrator->initialize(s);
     integrator->stepTo(s.getTime());
     state = integrator->getState();
-    project_q.setRequiredAccuracy(integrator->getConstraintToleranceInUse());
-    project_q.setOption(SimTK::ProjectOptions::LocalOnly);
-    project_q.setOption(SimTK::ProjectOptions::DontThrow);
+    quaternion_tolerance = integrator->getConstraintToleranceInUse();
+    base_quaternion_q = base().getFirstQIndex(state);  // a Free mobilizer's q: quaternion, then position
     qdot.resize(state.getNQ());
     next_q.resize(state.getNQ());
     next_u.resize(state.getNU());
@@ -132,17 +131,26 @@ struct Multicopter::Impl {
     system.multiplyByN(state, next_u, qdot);  // N(q0) u1, q0 still realised
     const SimTK::Vector& q0 = state.getQ();
     for (int i = 0; i < q0.size(); ++i) next_q[i] = q0[i] + h_s * qdot[i];
+    project_quaternion(next_q);
     state.updQ() = next_q;  // each upd* invalidates its stage and above
     state.updU() = next_u;
     state.updTime() = t1_s;
-    system.realize(state, SimTK::Stage::Position);
-    SimTK::ProjectResults results;
-    SimTK::Vector no_error_estimate;
-    system.projectQ(state, no_error_estimate, project_q, results);
-    if (results.getExitStatus() != SimTK::ProjectResults::Succeeded) {
-      throw std::runtime_error("quaternion projection failed");
-    }
     system.realize(state, SimTK::Stage::Velocity);
+  }
+
+  /// The integrator's position projection for this model, whose only position constraint is the
+  /// base's unit quaternion (SimbodyMatterSubsystemRep::projectQ in Simbody 3.7 with no holonomic
+  /// constraints): when the quaternion's length error |‖quat‖ − 1| (its RMS over one element)
+  /// exceeds the constraint tolerance, quat ← quat / ‖quat‖. Done on q before it goes into the
+  /// state, so Position is realised once, at the final q.
+  void project_quaternion(SimTK::Vector& q) const {
+    SimTK::Vec4 quat(q[base_quaternion_q], q[base_quaternion_q + 1], q[base_quaternion_q + 2], q[base_quaternion_q + 3]);
+    const SimTK::Real length_error = quat.norm() - SimTK::Real(1);
+    SimTK::Real sum_squares = 0;
+    sum_squares += SimTK::square(length_error);
+    if (!(std::sqrt(sum_squares / 1) > quaternion_tolerance)) return;  // NaN: left to the blow-up check
+    quat = quat / quat.norm();
+    for (int i = 0; i < 4; ++i) q[base_quaternion_q + i] = quat[i];
   }
 
   /// Sums over one step's sub-steps: the specific force (each sub-step in its own body frame) and
@@ -281,7 +289,8 @@ struct Multicopter::Impl {
   std::array<SimTK::UIndex, 4> rotor_u_index;   ///< each rotor pin's speed in the state's u
   std::optional<SimTK::SemiExplicitEulerIntegrator> integrator;  ///< initialises the state on reset
   SimTK::State state;                    ///< the state stepped by semi_explicit_euler_substep()
-  SimTK::ProjectOptions project_q;       ///< the integrator's options for the quaternion projection
+  double quaternion_tolerance = 0.0;     ///< the integrator's constraint tolerance
+  int base_quaternion_q = 0;             ///< where the base's quaternion starts in q
   SimTK::Vector qdot, next_q, next_u;    ///< scratch for a sub-step: N(q0) u1, q1, u1
   int substeps = 1;
   std::array<ContactPoint, kContactPoints> contacts;
