@@ -5,7 +5,6 @@
 #include <limits>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 
 #include "engine/model/simbody_include.h"
 
@@ -100,7 +99,6 @@ struct Multicopter::Impl {
     // The integrator projects and realises the initial state; the steps are then taken here
     // (semi_explicit_euler_substep) on a copy of it.
     integrator->initialize(s);
-    integrator->stepTo(s.getTime());
     state = integrator->getState();
     quaternion_tolerance = integrator->getConstraintToleranceInUse();
     base_quaternion_q = base().getFirstQIndex(state);  // a Free mobilizer's q: quaternion, then position
