@@ -17,6 +17,7 @@
 #include "base/mavlink/frame_parser.h"
 #include "base/mavlink/messages.h"
 #include "engine/hil/session.h"
+#include "tests/engine/hil/stand_in_session_config.h"
 #include "engine/model/x500_defaults.h"
 #include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
@@ -38,25 +39,13 @@ inline Seen fly(const std::vector<std::string>& faults, double duration_s, const
                 uint64_t seed = 1, const std::function<void(SessionConfig&)>& tweak = {}) {
   namespace msg = mavlink::msg;
   test::MavlinkPeer board(0, 0);
-  SessionConfig c;
-  c.target_ip = "127.0.0.1";
-  c.hil_port = board.endpoint().local_address().port();
-  c.local_port = test::free_udp_port();
-  c.vio = false;
-  c.clients_port = 0;
+  SessionConfig c = test_session::stand_in_session_config(board.endpoint().local_address().port(), faults);
   c.noise = noise;
   c.seed = seed;
   c.lockstep = true;
   c.speed = 0;
   c.duration_s = duration_s;
-  c.vehicle = model::x500_vehicle_config();
-  c.world = model::default_world_config();
   if (tweak) tweak(c);
-  for (const auto& f : faults) {
-    auto spec = faults::parse_fault(f);
-    EXPECT_TRUE(spec) << spec.error().message;
-    if (spec) c.faults.push_back(*spec);
-  }
   auto session = Session::create(c);
   EXPECT_TRUE(session) << session.error().message;
   if (!session) return {};

@@ -9,6 +9,7 @@
 #include "engine/hil/data_paths.h"
 #include "engine/hil/session.h"
 #include "engine/model/x500_defaults.h"
+#include "tests/engine/hil/stand_in_session_config.h"
 #include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
 
@@ -44,14 +45,7 @@ std::vector<uint64_t> sensor_times(test::MavlinkPeer& board, std::chrono::millis
 
 TEST(SessionControls, PauseHoldsAndSendsNothingResetKeepsTheWireClock) {
   test::MavlinkPeer board(0, 0);
-  SessionConfig c;
-  c.target_ip = "127.0.0.1";
-  c.hil_port = board.endpoint().local_address().port();
-  c.local_port = test::free_udp_port();
-  c.vio = false;
-  c.clients_port = 0;
-  c.vehicle = model::x500_vehicle_config();
-  c.world = model::default_world_config();
+  SessionConfig c = test_session::stand_in_session_config(board.endpoint().local_address().port());
   auto session = Session::create(c);
   ASSERT_TRUE(session) << session.error().message;
   Session& s = **session;

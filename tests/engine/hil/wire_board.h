@@ -23,6 +23,7 @@
 #include "base/mavlink/messages.h"
 #include "engine/hil/session.h"
 #include "engine/model/x500_defaults.h"
+#include "tests/engine/hil/stand_in_session_config.h"
 #include "tests/support/process.h"
 #include "tests/support/loopback.h"
 
@@ -97,21 +98,9 @@ class Running {
   using Tweak = std::function<void(SessionConfig&)>;
   Running(Board& board, const std::vector<std::string>& specs, bool noise = true, const std::string& record_path = "",
           const Tweak& tweak = {}) {
-    SessionConfig c;
-    c.target_ip = "127.0.0.1";
-    c.hil_port = board.port();
-    c.local_port = test::free_udp_port();
-    c.vio = false;
-    c.clients_port = 0;
+    SessionConfig c = test_session::stand_in_session_config(board.port(), specs);
     c.noise = noise;
     c.record_path = record_path;
-    c.vehicle = model::x500_vehicle_config();
-    c.world = model::default_world_config();
-    for (const auto& s : specs) {
-      auto spec = faults::parse_fault(s);
-      EXPECT_TRUE(spec) << spec.error().message;
-      if (spec) c.faults.push_back(*spec);
-    }
     if (tweak) tweak(c);
     auto session = Session::create(c);
     EXPECT_TRUE(session) << session.error().message;
