@@ -93,7 +93,7 @@ class Bridge {
 
   Status open() {
     auto target = net::SocketAddress::resolve(config_.board_ip, config_.board_port);
-    if (!target) return target.error().prefixed("the board's address " + config_.board_ip + ": ");
+    if (!target) return target.error().prefixed("-i (the board's address): ");
     board_address_ = *target;
     net::UdpLink::Config c;
     c.endpoint.bind_port = config_.local_port;

@@ -29,7 +29,7 @@ Expected<std::unique_ptr<StackLink>> StackLink::open(const SessionConfig& config
   } else {
     const uint16_t remote = config.link == FlightStackLink::SitlUdp ? config.sitl_port : config.hil_port;
     auto target = net::SocketAddress::resolve(config.target_ip, remote);
-    if (!target) return target.error().prefixed("the board's address: ");
+    if (!target) return target.error().prefixed("-i (the board's address): ");
     net::UdpLink::Config c;
     c.endpoint.name = "HIL link (--local-port)";
     c.endpoint.bind_address = config.bind_address;

@@ -128,7 +128,7 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
       }
     }
     auto board = net::SocketAddress::resolve(options.target_ip, options.gcs_port);
-    if (!board) return board.error().prefixed("the board's address: ");
+    if (!board) return board.error().prefixed("-i (the board's address): ");
     auto ep = open_udp("0.0.0.0", options.local_port, *board, net::PartnerPolicy::Fixed, "--local-port");
     if (!ep)
       // Failed, not Unavailable: the port is taken by another command talking to the board (the

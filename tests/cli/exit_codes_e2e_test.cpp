@@ -31,6 +31,22 @@ TEST(ExitCodes, APortInUseIsTwoInEveryCommand) {
   }
 }
 
+TEST(ExitCodes, ABoardAddressThatDoesNotResolveIsTwoAndNamesTheOption) {
+  const std::string free = std::to_string(test::free_udp_port());
+  const std::vector<std::vector<std::string>> commands = {
+      {"sim", "--local-port", free, "--no-vio", "--clients", "0", "--duration", "1"},
+      {"arm", "--local-port", free},
+      {"bridge", "--local-port", free, "--clients", "0", "--duration", "1"},
+  };
+  for (auto args : commands) {
+    args.insert(args.end(), {"-i", "no.such.host.invalid"});
+    const auto r = test::run_hitl(args, 30s);
+    EXPECT_EQ(r.exit_code, 2) << args[0] << ": " << r.err;
+    EXPECT_NE(r.err.find("-i (the board's address"), std::string::npos) << args[0] << ": " << r.err;
+    EXPECT_NE(r.err.find("no.such.host.invalid"), std::string::npos) << args[0] << ": " << r.err;
+  }
+}
+
 TEST(ExitCodes, NoBoardIsOneInEveryBoardCommand) {
   // 255.255.255.255: the kernel refuses every send at once, so no command waits out its timeout.
   for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
