@@ -7,7 +7,8 @@
 namespace hitl::tui {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}
+double finite_or_nan(const std::optional<double>& v) { return v && std::isfinite(*v) ? *v : kNaN; }
+}  // namespace
 
 void SampleRing::push(double value) {
   if (capacity_ == 0) return;
@@ -36,13 +37,25 @@ GraphHistory::GraphHistory(double window_s, double sample_hz)
       tracking_(capacity_) {}
 
 void GraphHistory::add(double now_s, const DashboardModel& m, std::optional<double> tracking_error_m) {
-  // 1 % slack: a frame due every period that arrives a hair early still samples.
-  if (last_s_ >= 0 && now_s - last_s_ < period_s_ * 0.99) return;
-  last_s_ = now_s;
-  auto value = [](const std::optional<double>& v) { return v && std::isfinite(*v) ? *v : kNaN; };
-  truth_.push(m.vehicle ? value(m.vehicle->truth_altitude_m) : kNaN);
-  estimate_.push(m.vehicle ? value(m.vehicle->altitude_m) : kNaN);
-  tracking_.push(value(tracking_error_m));
+  // How many sample periods have passed: 1 % slack, so a frame due every period that arrives a hair
+  // early still samples; a frame several periods on (a session faster than real time) holds its
+  // values for each of them, so the axis stays even on the caller's clock; at most one window.
+  std::size_t periods = 1;
+  double next_last_s = now_s;  // the first sample, or one after the clock went back (a new session)
+  if (last_s_ >= 0 && now_s > last_s_ - period_s_) {  // (further back: the clock went back)
+    const double elapsed = (now_s - last_s_) / period_s_;
+    if (elapsed < 0.99) return;
+    periods = static_cast<std::size_t>(std::min(static_cast<double>(capacity_), std::floor(elapsed + 0.01)));
+    if (periods < capacity_) next_last_s = last_s_ + static_cast<double>(periods) * period_s_;  // no drift
+  }
+  last_s_ = next_last_s;
+  for (std::size_t i = 0; i < periods; ++i) push_sample(m, tracking_error_m);
+}
+
+void GraphHistory::push_sample(const DashboardModel& m, std::optional<double> tracking_error_m) {
+  truth_.push(m.vehicle ? finite_or_nan(m.vehicle->truth_altitude_m) : kNaN);
+  estimate_.push(m.vehicle ? finite_or_nan(m.vehicle->altitude_m) : kNaN);
+  tracking_.push(finite_or_nan(tracking_error_m));
   for (const auto& row : m.paths.rows) {
     auto it = std::find_if(rates_.begin(), rates_.end(), [&](const Rate& r) { return r.name == row.name; });
     if (it == rates_.end()) {

@@ -31,12 +31,16 @@ class GraphHistory {
   static constexpr std::size_t kMaxRateSeries = 16;
 
   explicit GraphHistory(double window_s = 60, double sample_hz = 10);
-  /// Takes a sample of `model` (altitudes, the data paths' rates) and of `tracking_error_m` when
-  /// `now_s` (any monotonic clock) has moved a sample period on; the first call always samples.
+  /// Takes a sample of `model` (altitudes, the data paths' rates) and of `tracking_error_m` for
+  /// each sample period `now_s` has moved on (the dashboard's clock is the session's simulated
+  /// time: nothing while paused, several periods a frame faster than real time); the first call,
+  /// and one after the clock went back, takes one.
   void add(double now_s, const DashboardModel& model, std::optional<double> tracking_error_m);
   GraphsPanel panel() const;
 
  private:
+  void push_sample(const DashboardModel& m, std::optional<double> tracking_error_m);
+
   struct Rate {
     std::string name;
     double expected_hz = 0;

@@ -55,7 +55,7 @@ void draw_graph(Screen& screen, const Rect& in, int y, int rows, const std::stri
 }  // namespace
 
 void draw_graphs(Screen& screen, const Rect& r, const GraphsPanel& panel) {
-  screen.box(r, format("Graphs, last %.0f s", panel.window_s));
+  screen.box(r, format("Graphs, last %.0f s simulated", panel.window_s));
   const Rect in = r.inner();
   if (in.empty() || in.w < kRateLabelW + kRateValueW + 10) return;
   const bool tracking = !panel.tracking_error_m.empty();

@@ -226,7 +226,8 @@ DashboardModel SimDashboard::collect() {
       loop_latency_field("loop p50", s.loop_latency, s.loop_latency.latency.p50_us),
       loop_latency_field("loop max", s.loop_latency, s.loop_latency.latency.max_us),
   };
-  graphs_.add(monotonic_s(), m, m.trajectory_running ? std::optional<double>(tracking_error_m_.load()) : std::nullopt);
+  // On simulated time: the graphs hold still while paused and show simulated seconds at any --speed.
+  graphs_.add(s.sim_time_s, m, m.trajectory_running ? std::optional<double>(tracking_error_m_.load()) : std::nullopt);
   m.graphs = graphs_.panel();
   return m;
 }

@@ -126,6 +126,29 @@ TEST(GraphHistory, SamplesAtItsRateAndStaysBounded) {
   EXPECT_EQ(p.tracking_error_m.back(), 0.5);
 }
 
+TEST(GraphHistory, OnSimulatedTimeAPausedSessionAddsNothingAndAFastOneFillsEveryPeriod) {
+  // The dashboard samples on the session's simulated clock: paused, the graphs hold still; at
+  // --speed 5 a frame 0.5 s of simulated time later holds five samples of its values, so the
+  // axis is simulated seconds at any speed.
+  GraphHistory h(60, 10);
+  auto m = test::sample_model();
+  m.vehicle->truth_altitude_m = 1.0;
+  h.add(9.995, m, std::nullopt);
+  h.add(10.094, m, std::nullopt);  // a hair early: sampled, and the next one is due at 10.195
+  for (int frame = 0; frame < 50; ++frame) h.add(10.094, m, std::nullopt);  // paused
+  EXPECT_EQ(h.panel().truth_altitude_m.size(), 2u);
+  m.vehicle->truth_altitude_m = 2.0;
+  h.add(10.595, m, std::nullopt);
+  EXPECT_EQ(h.panel().truth_altitude_m, (std::vector<double>{1, 1, 2, 2, 2, 2, 2}));
+  h.add(1000.0, m, std::nullopt);  // far ahead: one window of it, no more
+  EXPECT_EQ(h.panel().truth_altitude_m.size(), 600u);
+  m.vehicle->truth_altitude_m = 3.0;
+  h.add(5.0, m, std::nullopt);  // a clock that went back (a new session): sampled, and goes on from there
+  h.add(5.1, m, std::nullopt);
+  EXPECT_EQ(h.panel().truth_altitude_m.back(), 3.0);
+  EXPECT_EQ(h.panel().truth_altitude_m[597], 2.0);
+}
+
 TEST(GraphHistory, NoTrackingErrorInTheWindowMeansNoTrackingGraph) {
   GraphHistory h(1, 10);
   const auto m = test::sample_model();
