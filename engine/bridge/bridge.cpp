@@ -92,8 +92,8 @@ class Bridge {
         clients_parser_(messages_), own_(kBridgeSystemId, kBridgeComponentId) {}
 
   Status open() {
-    auto target = net::SocketAddress::resolve(config_.board_ip, config_.board_port);
-    if (!target) return target.error().prefixed("-i (the board's address): ");
+    auto target = net::resolve_board_address(config_.board_ip, config_.board_port);
+    if (!target) return target.error();
     board_address_ = *target;
     net::UdpLink::Config c;
     c.endpoint.bind_port = config_.local_port;

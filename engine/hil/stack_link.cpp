@@ -28,8 +28,8 @@ Expected<std::unique_ptr<StackLink>> StackLink::open(const SessionConfig& config
     link = std::move(server.value());
   } else {
     const uint16_t remote = config.link == FlightStackLink::SitlUdp ? config.sitl_port : config.hil_port;
-    auto target = net::SocketAddress::resolve(config.target_ip, remote);
-    if (!target) return target.error().prefixed("-i (the board's address): ");
+    auto target = net::resolve_board_address(config.target_ip, remote);
+    if (!target) return target.error();
     net::UdpLink::Config c;
     c.endpoint.name = "HIL link (--local-port)";
     c.endpoint.bind_address = config.bind_address;

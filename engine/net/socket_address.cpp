@@ -35,6 +35,12 @@ Expected<SocketAddress> SocketAddress::resolve(const std::string& host, uint16_t
   return out;
 }
 
+Expected<SocketAddress> resolve_board_address(const std::string& host, uint16_t port) {
+  auto address = SocketAddress::resolve(host, port);
+  if (!address) return address.error().prefixed("-i (the board's address): ");
+  return address;
+}
+
 Expected<uint16_t> parse_port(std::string_view text, std::string_view what, bool allow_zero) {
   unsigned value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

@@ -40,6 +40,9 @@ class SocketAddress {
   socklen_t length_ = 0;
 };
 
+/// The board's address as -i gives it: resolve(), with errors that name the option.
+Expected<SocketAddress> resolve_board_address(const std::string& host, uint16_t port);
+
 /// A port number from text, 1..65535 (0 too when `allow_zero`); errors name `what`.
 Expected<uint16_t> parse_port(std::string_view text, std::string_view what, bool allow_zero = false);
 

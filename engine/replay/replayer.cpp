@@ -17,8 +17,8 @@ namespace msg = mavlink::msg;
 namespace {
 
 Expected<net::UdpEndpoint> open_endpoint(const ReplayConfig& config, uint16_t remote, uint16_t local, const char* name) {
-  auto peer = net::SocketAddress::resolve(config.target_ip, remote);
-  if (!peer) return peer.error().prefixed("-i (the board's address): ");
+  auto peer = net::resolve_board_address(config.target_ip, remote);
+  if (!peer) return peer.error();
   net::UdpEndpoint::Config c;
   c.name = name;
   c.bind_address = config.bind_address;

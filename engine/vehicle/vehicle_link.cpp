@@ -127,8 +127,8 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
         if (link->discover(std::min(options.timeout_s, 1.5))) return link;
       }
     }
-    auto board = net::SocketAddress::resolve(options.target_ip, options.gcs_port);
-    if (!board) return board.error().prefixed("-i (the board's address): ");
+    auto board = net::resolve_board_address(options.target_ip, options.gcs_port);
+    if (!board) return board.error();
     auto ep = open_udp("0.0.0.0", options.local_port, *board, net::PartnerPolicy::Fixed, "--local-port");
     if (!ep)
       // Failed, not Unavailable: the port is taken by another command talking to the board (the
