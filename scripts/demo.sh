@@ -6,10 +6,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
-# A fresh tree is configured for hitl alone (no tests, no benchmarks: quicker). A build/ that exists
+# A fresh tree is configured for hitl alone (no tests, no benchmarks: quicker), with the build type
+# ./scripts/test.sh uses, so that either command after the other reuses the objects. A build/ that exists
 # (./scripts/test.sh's) is used as it is: the demo never changes its options.
 if [ ! -f build/CMakeCache.txt ]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DHITL_BUILD_TESTS=OFF -DHITL_BUILD_BENCH=OFF >/dev/null
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHITL_BUILD_TESTS=OFF -DHITL_BUILD_BENCH=OFF >/dev/null
 fi
 cmake --build build -j"$(nproc)" --target hitl
 echo

@@ -7,6 +7,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh --test
 jobs=$(nproc)
+# CI (CI=true, as .ci/run runs) builds hitl's own code with -Werror: no warning lands.
+werror=()
+if [ "${CI:-}" = "true" ]; then werror=(-DHITL_WERROR=ON); fi
 
 fuzz_args=()
 if [ -f tests/fuzz/CMakeLists.txt ]; then
@@ -15,7 +18,7 @@ if [ -f tests/fuzz/CMakeLists.txt ]; then
   fuzz_args=(-DHITL_FUZZ_BUILD_DIR="$PWD/build/fuzz")
 fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHITL_BUILD_TESTS=ON -DHITL_BUILD_BENCH=ON \
-  "${fuzz_args[@]}" >/dev/null
+  "${werror[@]}" "${fuzz_args[@]}" >/dev/null
 cmake --build build -j"$jobs"
 cd build
 ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 600

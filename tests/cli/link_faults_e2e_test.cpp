@@ -231,7 +231,9 @@ TEST(LinkFaultsE2E, JitterSpreadsArrivalsOverTheSettingAndKeepsTheOrder) {
     SCOPED_TRACE(name);
     std::vector<double> base_ms, jittered_ms;
     for (std::size_t i = 0; i < got.size(); ++i) {
-      if (i > 0) EXPECT_GT(got[i].time_us, got[i - 1].time_us) << "order kept";
+      if (i > 0) {
+        EXPECT_GT(got[i].time_us, got[i - 1].time_us) << "order kept";
+      }
       const double offset_ms = (got[i].wall_s - static_cast<double>(got[i].time_us) * 1e-6) * 1e3;
       if (in_window(got[i].time_us, 0.3, 0.95)) base_ms.push_back(offset_ms);
       if (in_window(got[i].time_us, 1.1, 2.4)) jittered_ms.push_back(offset_ms);
@@ -265,7 +267,9 @@ TEST(LinkFaultsE2E, DelayMovesArrivalsByTheSettingWithinAMillisecond) {
     SCOPED_TRACE(name);
     std::vector<double> base_ms, delayed_ms;
     for (std::size_t i = 0; i < got.size(); ++i) {
-      if (i > 0) EXPECT_GT(got[i].time_us, got[i - 1].time_us) << "order kept";
+      if (i > 0) {
+        EXPECT_GT(got[i].time_us, got[i - 1].time_us) << "order kept";
+      }
       const double offset_ms = (got[i].wall_s - static_cast<double>(got[i].time_us) * 1e-6) * 1e3;
       if (in_window(got[i].time_us, 0.3, 0.95)) base_ms.push_back(offset_ms);
       if (in_window(got[i].time_us, 1.1, 1.9)) delayed_ms.push_back(offset_ms);
