@@ -24,6 +24,7 @@
 #include "emulator/mavlink_instance.h"
 #include "emulator/param_store.h"
 #include "emulator/shell.h"
+#include "engine/mavlink/statustext.h"
 #include "engine/net/busy_poll.h"
 #include "engine/net/udp_endpoint.h"
 #include "target/core/dsp_hitl.h"
@@ -87,7 +88,9 @@ struct Board::Impl {
   // --- the telemetry side (board_streams.cpp) ---------------------------------------------------
   /// HEARTBEAT.base_mode: the flight stack's flags, plus HIL when SYS_HITL is 1 (as commander does).
   uint8_t base_mode_with_hil(const FlightState& s) const;
+  /// To every instance; a text over 50 characters in chunks, as PX4 sends it.
   void statustext(const std::string& text, mavlink::MavSeverity severity);
+  mavlink::StatusTextChunker statustext_chunker;
   /// The flight stack's messages (flight->take_messages()) as STATUSTEXT, each with its severity.
   void say_flight_messages();
   void send_stream(MavlinkInstance& inst, uint32_t id);

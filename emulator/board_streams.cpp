@@ -21,10 +21,8 @@ void Board::Impl::say_flight_messages() {
 }
 
 void Board::Impl::statustext(const std::string& text, mavlink::MavSeverity severity) {
-  msg::Statustext st;
-  st.severity = static_cast<uint8_t>(severity);
-  mavlink::set_text(st.text, text);
-  for (auto* i : instances()) i->send(st);
+  for (const auto& st : statustext_chunker.split(static_cast<uint8_t>(severity), text))
+    for (auto* i : instances()) i->send(st);
 }
 
 void Board::Impl::send_stream(MavlinkInstance& inst, uint32_t id) {

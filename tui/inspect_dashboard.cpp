@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "base/common/clock.h"
 #include "base/mavlink/messages.h"
-#include "base/mavlink/text_field.h"
 #include "tui/draw.h"
 
 namespace hitl::tui {
@@ -14,13 +14,18 @@ InspectDashboard::InspectDashboard(std::string where, std::map<std::string, doub
 
 void InspectDashboard::on_frame(const mavlink::Frame& frame, const std::string& source, int64_t) {
   if (!frame.is<mavlink::msg::Statustext>() || frame.desc == nullptr) return;
-  const auto t = frame.as<mavlink::msg::Statustext>();
-  const std::string text = mavlink::text_of(t.text);
-  const std::string from = source + " " + std::to_string(frame.sysid);
-  log_.add_statustext(severity_from_mavlink(t.severity), from, "[" + from + "] " + text);
+  source_of_sysid_[frame.sysid] = source;
+  for (const auto& text : statustexts_.on_frame(frame, monotonic_s())) show(text);
+}
+
+void InspectDashboard::show(const mavlink::StatusText& text) {
+  const std::string from = source_of_sysid_[text.sysid] + " " + std::to_string(text.sysid);
+  log_.add_statustext(severity_from_mavlink(text.severity), from,
+                      "[" + from + "] " + mavlink::printable_statustext(text.text));
 }
 
 void InspectDashboard::on_tick(const telemetry::TrafficSummary& summary) {
+  for (const auto& text : statustexts_.expire(monotonic_s())) show(text);
   std::lock_guard<std::mutex> lock(mutex_);
   summary_ = summary;
 }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "engine/inspect/inspector.h"
+#include "engine/mavlink/statustext.h"
 #include "tui/dashboard.h"
 #include "tui/message_log.h"
 
@@ -37,6 +38,9 @@ class InspectDashboard : public DashboardSource, public inspect::Inspector::Obse
   std::map<std::string, double> expected_hz_;
   bool stay_open_;
   MessageLog log_;
+  void show(const mavlink::StatusText& text);
+  mavlink::StatusTextAssembler statustexts_;  // the inspector's thread only
+  std::map<uint8_t, std::string> source_of_sysid_;  // at most 256
   mutable std::mutex mutex_;
   std::optional<telemetry::TrafficSummary> summary_;
   std::optional<std::string> finished_;

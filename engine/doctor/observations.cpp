@@ -57,12 +57,21 @@ void ObservationTracker::on_autopilot_frame(const mavlink::Frame& f, double now_
       ++seen_.estimator_reports;
       break;
     case msg::Statustext::kId: {
-      seen_.statustext.push_back(text_of(f.as<msg::Statustext>().text));
-      if (seen_.statustext.size() > 50) seen_.statustext.erase(seen_.statustext.begin());
+      for (auto& text : statustexts_.on_frame(f, now_s)) add_statustext(std::move(text.text));
       break;
     }
     default: break;
   }
+}
+
+void ObservationTracker::add_statustext(std::string text) {
+  seen_.statustext.push_back(std::move(text));
+  if (seen_.statustext.size() > 50) seen_.statustext.erase(seen_.statustext.begin());
+}
+
+const Observations& ObservationTracker::observations() {
+  for (auto& text : statustexts_.flush()) add_statustext(std::move(text.text));
+  return seen_;
 }
 
 void ObservationTracker::on_other_frame(const mavlink::Frame& f, double now_s) {

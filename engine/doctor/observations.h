@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/mavlink/frame.h"
+#include "engine/mavlink/statustext.h"
 #include "engine/telemetry/vehicle_telemetry.h"
 
 namespace hitl::doctor {
@@ -55,7 +56,7 @@ struct Observations {
   std::optional<SysStatusSeen> sys_status;
   std::optional<EstimatorStatusSeen> estimator;
   uint64_t estimator_reports = 0;
-  std::vector<std::string> statustext;         ///< in arrival order (the last 50)
+  std::vector<std::string> statustext;         ///< in arrival order (the last 50), chunks joined
   SessionStatus session;
 };
 
@@ -65,10 +66,13 @@ class ObservationTracker {
   void on_autopilot_frame(const mavlink::Frame& frame, double now_s);
   /// A frame from any other system (the session's simulator, other clients).
   void on_other_frame(const mavlink::Frame& frame, double now_s);
-  const Observations& observations() const { return seen_; }
+  /// What was seen; a status text still waiting for its next chunk is counted as it is.
+  const Observations& observations();
 
  private:
+  void add_statustext(std::string text);
   Observations seen_;
+  mavlink::StatusTextAssembler statustexts_;
 };
 
 }  // namespace hitl::doctor

@@ -109,10 +109,8 @@ void ClientServices::broadcast_own(const M& message) {
 }
 
 void ClientServices::announce(Severity severity, std::string_view text) {
-  mavlink::msg::Statustext st;
-  st.severity = static_cast<uint8_t>(mavlink::mav_severity(severity));
-  mavlink::set_text(st.text, text);
-  broadcast_own(st);
+  for (const auto& st : statustext_chunker_.split(static_cast<uint8_t>(mavlink::mav_severity(severity)), text))
+    broadcast_own(st);
 }
 
 /// HEARTBEAT from the simulator's sysid (STANDBY while paused) and NAMED_VALUE_* "sim_rtf" (recent

@@ -14,6 +14,7 @@
 #include "base/common/expected.h"
 #include "engine/faults/fault_schedule.h"
 #include "engine/hil/recording.h"
+#include "engine/mavlink/statustext.h"
 #include "engine/hil/session_config.h"
 #include "engine/hil/session_events.h"
 #include "engine/hil/stack_link.h"
@@ -64,7 +65,7 @@ class ClientServices {
   void send_status(double now_s, double sim_s, double start_wall_s, const SessionStatus& status);
   /// A STATUSTEXT from the simulator's identity (a fault started or ended): to every client, where
   /// a ground station shows it, and into the recording, so that a recording says what was injected
-  /// when. Texts longer than STATUSTEXT's 50 characters are cut.
+  /// when. A text longer than STATUSTEXT's 50 characters goes out in chunks (id, chunk_seq), as PX4 sends one.
   void announce(Severity severity, std::string_view text);
   /// Truth (ODOMETRY, estimator MOCAP) to clients and the recording when due at `sim_s`.
   void send_truth_if_due(const sensors::GroundTruth& truth, uint64_t time_usec, double sim_s);
@@ -112,6 +113,7 @@ class ClientServices {
   router::LinkId board_link_ = 0, clients_link_ = 0;
   uint64_t routed_to_clients_ = 0;
   mavlink::FrameEncoder own_encoder_;  ///< the session's status and truth to clients
+  mavlink::StatusTextChunker statustext_chunker_;
   std::unique_ptr<net::Link> vio_;
   mavlink::FrameEncoder vio_encoder_;  ///< the VIO link's own sequence
   LinkFaults vio_faults_;

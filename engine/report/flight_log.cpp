@@ -13,6 +13,7 @@
 #include "base/mavlink/severity.h"
 #include "base/mavlink/text_field.h"
 #include "engine/frames/frames.h"
+#include "engine/mavlink/statustext.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/telemetry/px4_mode.h"
 
@@ -119,11 +120,12 @@ struct VehicleState {
   std::optional<std::string> mode;
 };
 
-std::string source_name(const mavlink::Frame& f, uint8_t sim_id) {
-  if (f.compid == mavlink::kCompIdPathPlanner) return "pilot";
-  if (f.sysid == sim_id) return "simulator";
-  return "system " + std::to_string(f.sysid);
+std::string source_name(uint8_t sysid, uint8_t compid, uint8_t sim_id) {
+  if (compid == mavlink::kCompIdPathPlanner) return "pilot";
+  if (sysid == sim_id) return "simulator";
+  return "system " + std::to_string(sysid);
 }
+std::string source_name(const mavlink::Frame& f, uint8_t sim_id) { return source_name(f.sysid, f.compid, sim_id); }
 
 }  // namespace
 
@@ -171,6 +173,11 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
       return;
     }
     log.events.push_back({t_s, severity, std::move(source), std::move(text)});
+  };
+  mavlink::StatusTextAssembler statustexts;  // PX4's long texts come in chunks
+  auto statustext_event = [&](const mavlink::StatusText& t) {
+    event(t.first_chunk_s, mavlink::severity_of(t.severity), source_name(t.sysid, t.compid, sim_id),
+          mavlink::printable_statustext(t.text));
   };
   auto arrive = [](Arrivals& a, double t_s, uint64_t wall_us) {
     a.t_s.push_back(t_s);
@@ -269,8 +276,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           break;
         }
         case msg::Statustext::kId: {
-          const auto st = f.as<msg::Statustext>();
-          event(t_s, mavlink::severity_of(st.severity), source_name(f, sim_id), mavlink::text_of(st.text));
+          for (const auto& t : statustexts.on_frame(f, t_s)) statustext_event(t);
           break;
         }
         case msg::Heartbeat::kId: {
@@ -289,6 +295,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
       }
     });
   }
+  for (const auto& t : statustexts.flush()) statustext_event(t);
+  std::stable_sort(log.events.begin(), log.events.end(), [](const auto& a, const auto& b) { return a.t_s < b.t_s; });
   if (log.frames == 0) return Error::input("'" + path + "' holds no MAVLink frame of a known message (is it a .tlog?)");
   log.skipped_bytes = reader->stats().skipped_bytes;
   log.parse_errors = parser.stats().crc_errors + parser.stats().unknown_ids;

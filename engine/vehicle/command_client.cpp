@@ -6,7 +6,9 @@
 #include <cstring>
 #include <optional>
 
+#include "base/common/clock.h"
 #include "base/mavlink/text_field.h"
+#include "engine/mavlink/statustext.h"
 
 namespace hitl::vehicle {
 namespace {
@@ -50,10 +52,11 @@ Expected<CommandOutcome> CommandClient::send(uint16_t command, const std::array<
   c.param1 = p[0]; c.param2 = p[1]; c.param3 = p[2]; c.param4 = p[3]; c.param5 = p[4]; c.param6 = p[5]; c.param7 = p[6];
   CommandOutcome outcome;
   std::optional<uint8_t> result;
+  mavlink::StatusTextAssembler statustexts;  // PX4 sends a long refusal in chunks
   auto handler = [&](const mavlink::Frame& f) {
     if (f.is<msg::Statustext>()) {
-      const auto t = f.as<msg::Statustext>();
-      outcome.statustexts.push_back(mavlink::text_of(t.text));
+      for (const auto& t : statustexts.on_frame(f, monotonic_s()))
+        outcome.statustexts.push_back(mavlink::printable_statustext(t.text));
       return false;
     }
     if (!f.is<msg::CommandAck>()) return false;
@@ -75,6 +78,7 @@ Expected<CommandOutcome> CommandClient::send(uint16_t command, const std::array<
   outcome.result = static_cast<mavlink::MavResult>(*result);
   // STATUSTEXTs often trail the ACK by a moment: give them a chance to arrive.
   if (!outcome.accepted()) link_.wait(0.2, handler);
+  for (const auto& t : statustexts.flush()) outcome.statustexts.push_back(mavlink::printable_statustext(t.text));
   return outcome;
 }
 

@@ -46,10 +46,8 @@ void PilotRecord::setpoint(uint32_t time_boot_ms, const TrajectoryReference& ref
 }
 
 void PilotRecord::note(Severity severity, std::string_view text) {
-  mavlink::msg::Statustext st;
-  st.severity = static_cast<uint8_t>(mavlink::mav_severity(severity));
-  mavlink::set_text(st.text, text);
-  record(st);
+  for (const auto& st : statustext_chunker_.split(static_cast<uint8_t>(mavlink::mav_severity(severity)), text))
+    record(st);
 }
 
 }  // namespace hitl::vehicle

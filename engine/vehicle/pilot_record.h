@@ -16,6 +16,7 @@
 #include "base/common/severity.h"
 #include "base/contract/session_status.h"
 #include "base/mavlink/frame_encoder.h"
+#include "engine/mavlink/statustext.h"
 #include "engine/vehicle/trajectory.h"
 
 namespace hitl::vehicle {
@@ -33,6 +34,7 @@ class PilotRecord {
   void record(const M& message);
   Sink sink_;
   mavlink::FrameEncoder encoder_;
+  mavlink::StatusTextChunker statustext_chunker_;
 };
 
 }  // namespace hitl::vehicle

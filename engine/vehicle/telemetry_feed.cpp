@@ -15,13 +15,6 @@ namespace msg = mavlink::msg;
 /// A requested stream silent for this long (wall time) is asked for again.
 constexpr double kRerequestAfter_s = 5.0;
 
-std::string statustext_string(const msg::Statustext& t) {
-  std::string text = mavlink::text_of(t.text);
-  for (char& c : text)  // nothing from the network reaches the terminal as a control character
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = ' ';
-  return text;
-}
-
 }  // namespace
 
 std::vector<StreamRequest> dashboard_streams() {
@@ -50,6 +43,12 @@ void TelemetryFeed::stop() {
 TelemetryFeedSnapshot TelemetryFeed::snapshot() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return published_;
+}
+
+void TelemetryFeed::show(const std::vector<mavlink::StatusText>& texts) {
+  if (!statustext_) return;
+  for (const auto& t : texts)
+    statustext_(static_cast<mavlink::MavSeverity>(t.severity), mavlink::printable_statustext(t.text));
 }
 
 void TelemetryFeed::request_streams(VehicleLink& link, double now_s, bool all) {
@@ -112,8 +111,7 @@ void TelemetryFeed::run() {
       const double now_s = monotonic_s();
       tracker_.on_frame(f, now_s);
       if (f.is<msg::Statustext>()) {
-        const auto t = f.as<msg::Statustext>();
-        if (statustext_) statustext_(static_cast<mavlink::MavSeverity>(t.severity), statustext_string(t));
+        show(statustexts_.on_frame(f, now_s));
       } else if (f.is<msg::CommandAck>()) {
         const auto a = f.as<msg::CommandAck>();
         if (a.command == mavlink::cmd::kSetMessageInterval && a.result != static_cast<uint8_t>(mavlink::MavResult::Accepted))
@@ -126,6 +124,7 @@ void TelemetryFeed::run() {
       return false;
     });
     const double now_s = monotonic_s();
+    show(statustexts_.expire(now_s));
     request_streams(*link, now_s, false);
     if (now_s >= next_publish_s) {
       next_publish_s = now_s + 0.05;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "base/mavlink/enums.h"
+#include "engine/mavlink/statustext.h"
 #include "engine/telemetry/estimate_error.h"
 #include "engine/telemetry/vehicle_telemetry.h"
 #include "engine/vehicle/vehicle_link.h"
@@ -60,6 +61,9 @@ class TelemetryFeed {
  private:
   void run();
   void request_streams(VehicleLink& link, double now_s, bool all);
+  /// Whole status texts to the sink, control characters made spaces (nothing from the network
+  /// reaches the terminal as one).
+  void show(const std::vector<mavlink::StatusText>& texts);
   void on_truth(const mavlink::Frame& frame);
 
   LinkOptions options_;
@@ -67,6 +71,7 @@ class TelemetryFeed {
   std::optional<uint8_t> truth_sysid_;
   std::vector<double> requested_at_s_;
   TextSink statustext_;
+  mavlink::StatusTextAssembler statustexts_;  // the feed's thread only
   std::atomic<bool> stop_{false};
   mutable std::mutex mutex_;
   TelemetryFeedSnapshot published_;

@@ -8,6 +8,7 @@
 #include "base/contract/dsp_hitl_status.h"
 #include "base/mavlink/enums.h"
 #include "base/mavlink/frame_parser.h"
+#include "base/mavlink/text_field.h"
 #include "engine/net/tcp_server.h"
 #include "engine/vehicle/command_client.h"
 #include "engine/vehicle/param_client.h"
@@ -71,6 +72,33 @@ TEST(CommandClient, DenialCarriesTheStatustextAndSilenceIsAnError) {
   auto quiet_link = connect_to(mute.port());
   CommandClient quiet(*quiet_link);
   EXPECT_FALSE(quiet.send(400, {1, 0, 0, 0, 0, 0, 0}, 0.2, 2).ok());
+}
+
+TEST(CommandClient, APx4RefusalInChunksIsReadWhole) {
+  // PX4 v1.16 sends a text over 50 characters as chunks of one id (issue 38: "hitl arm" printed
+  // "Arming temporarily rejected: t" and a tab, the last chunk only).
+  const std::string refusal = "Arming denied: Resolve system health failures first\tsensors: accel 0 uncalibrated";
+  ScriptedBoard board([&](const mavlink::Frame& f, test::MavlinkPeer& peer) {
+    if (!f.is<msg::CommandLong>()) return;
+    msg::CommandAck ack;
+    ack.command = f.as<msg::CommandLong>().command;
+    ack.result = static_cast<uint8_t>(mavlink::MavResult::TemporarilyRejected);
+    peer.send(ack);
+    for (uint8_t seq = 0; seq * 50U < refusal.size(); ++seq) {
+      msg::Statustext t;
+      t.severity = 2;
+      t.id = 17;
+      t.chunk_seq = seq;
+      mavlink::set_text(t.text, std::string_view(refusal).substr(seq * 50U, 50));
+      peer.send(t);
+    }
+  });
+  auto link = connect_to(board.port());
+  CommandClient client(*link);
+  auto r = client.send(mavlink::cmd::kComponentArmDisarm, {1, 0, 0, 0, 0, 0, 0});
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->text(), "temporarily rejected: Arming denied: Resolve system health failures first sensors: accel 0 uncalibrated");
+  EXPECT_EQ(r->statustexts.size(), 1U);
 }
 
 TEST(ParamClient, DownloadReRequestsMissingIndicesAndIgnoresDuplicates) {
