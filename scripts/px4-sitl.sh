@@ -40,6 +40,12 @@ for sub in src/modules/mavlink/mavlink/message_definitions src/modules/mavlink/m
            src/lib/events/libevents/libs src/drivers/gps/devices/src src/lib/heatshrink/heatshrink; do
   [ -n "$(ls -A "$tree/$sub" 2>/dev/null)" ] || fail "the submodule folder $sub is empty or missing (docs/sim.md "Building PX4 SITL" lists the five and their commits)"
 done
+# PX4's build depends on each submodule's .git (cmake/px4_git.cmake); a snapshot put in place has
+# none. An empty folder stands for it: git skips it as no repository, and GIT_SUBMODULES_ARE_EVIL
+# keeps PX4 from updating anything.
+for sub in src/modules/mavlink/mavlink src/drivers/gps/devices src/lib/events/libevents src/lib/heatshrink/heatshrink; do
+  [ -e "$tree/$sub/.git" ] || mkdir "$tree/$sub/.git"
+done
 if git -C "$tree" rev-parse --git-dir >/dev/null 2>&1; then
   described=$(git -C "$tree" describe --tags --always 2>/dev/null || true)
   case "$described" in
