@@ -1,5 +1,7 @@
 #include "engine/inspect/inspector.h"
 
+#include "engine/net/link_spec.h"
+
 #include "base/common/clock.h"
 #include <algorithm>
 #include <chrono>
@@ -12,6 +14,27 @@ namespace hitl::inspect {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+namespace {
+
+/// --connect in the link grammar (engine/net/link_spec.h), udp:HOST:PORT, or as before HOST:PORT.
+/// Inspect times each datagram as the kernel received it, so it takes UDP only.
+Expected<net::SocketAddress> connect_address(const std::string& text) {
+  const bool spelled_as_link = text.rfind("udp:", 0) == 0 || text.rfind("udpin:", 0) == 0 || text.rfind("tcp:", 0) == 0 ||
+                               text.rfind("tcpin:", 0) == 0;
+  if (!spelled_as_link) return net::SocketAddress::parse(text, "--connect");
+  auto spec = net::parse_link_spec(text);
+  if (!spec) return spec.error().prefixed("--connect ");
+  if (spec->kind == net::LinkSpec::Kind::UdpIn)
+    return Error::input("--connect '" + text + "': inspect listens with --port " + std::to_string(spec->port) + ", not udpin:");
+  if (spec->kind != net::LinkSpec::Kind::Udp)
+    return Error::input("--connect '" + text + "': inspect times UDP datagrams as the kernel received them: udp:HOST:PORT");
+  auto peer = net::SocketAddress::resolve(spec->host, spec->port);
+  if (!peer) return peer.error().prefixed("--connect: ");
+  return peer;
+}
 
 }  // namespace
 
@@ -33,7 +56,7 @@ Expected<std::unique_ptr<Inspector>> Inspector::open(const InspectConfig& config
       break;
     }
     case InspectConfig::Source::Connect: {
-      auto peer = net::SocketAddress::parse(config.connect, "--connect");
+      auto peer = connect_address(config.connect);
       if (!peer) return peer.error();
       net::UdpEndpoint::Config ec;
       ec.name = "--connect";
