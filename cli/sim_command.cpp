@@ -320,8 +320,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   const char* route = "Clients and recording";
   sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local MAVLink clients (other hitl commands); 0: none")
       ->capture_default_str()->check(number_in(0, 65535))->group(route);
-  sub->add_option("--gcs", c.gcs, "Also route the board's telemetry to a ground station (QGroundControl: 127.0.0.1:14550)")
-      ->type_name("HOST:PORT")->group(route);
+  sub->add_option("--gcs", c.gcs,
+                  "Also route the board's telemetry to a ground station at udp:HOST:PORT (or HOST:PORT; QGroundControl: "
+                  "udp:127.0.0.1:14550)")
+      ->type_name("udp:HOST:PORT")->group(route);
   sub->add_option("--truth-rate", c.truth_rate_hz,
                   "Ground truth to clients as ODOMETRY (sysid " + std::to_string(hil::kSimulatorSystemId) +
                       ", estimator MOCAP), Hz; 0: none")

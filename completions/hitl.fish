@@ -152,7 +152,7 @@ complete -c hitl -n '__hitl_at "sim"' -l fault -r -f -d 'Inject a fault at simul
 complete -c hitl -n '__hitl_at "sim"' -l scenario -r -f -a '(__fish_complete_suffix .json)' -d 'Faults from a JSON file: {"events": [{"at_s": 20, "fault": "gps-loss", "duration_s": 10},...'
 complete -c hitl -n '__hitl_at "sim"' -l tui -d 'The live dashboard'
 complete -c hitl -n '__hitl_at "sim"' -l clients -r -f -d 'UDP port on 127.0.0.1 for local MAVLink clients'
-complete -c hitl -n '__hitl_at "sim"' -l gcs -r -f -d 'Also route the board\'s telemetry to a ground station'
+complete -c hitl -n '__hitl_at "sim"' -l gcs -r -f -d 'Also route the board\'s telemetry to a ground station at udp:HOST:PORT'
 complete -c hitl -n '__hitl_at "sim"' -l truth-rate -r -f -d 'Ground truth to clients as ODOMETRY'
 complete -c hitl -n '__hitl_at "sim"' -l record -r -f -a '(__fish_complete_suffix .tlog)' -d 'Save everything sent and received to a .tlog'
 complete -c hitl -n '__hitl_at "sim"' -l report -r -f -a '(__fish_complete_suffix .html)' -d 'At the end, draw the recording as an HTML page'

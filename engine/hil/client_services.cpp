@@ -10,6 +10,7 @@
 #include "base/mavlink/messages.h"
 #include "base/mavlink/severity.h"
 #include "base/mavlink/text_field.h"
+#include "engine/net/link_spec.h"
 #include "engine/net/open_link.h"
 
 namespace hitl::hil {
@@ -33,8 +34,10 @@ Expected<std::unique_ptr<ClientServices>> ClientServices::open(const SessionConf
   }
   std::vector<net::SocketAddress> fixed;
   if (!config.gcs.empty()) {
-    auto gcs = net::SocketAddress::parse(config.gcs, "--gcs");
-    if (!gcs) return gcs.error();
+    auto spec = net::parse_udp_peer(config.gcs, "the ground station is a UDP peer of the client port");
+    if (!spec) return spec.error().prefixed("--gcs ");
+    auto gcs = net::SocketAddress::resolve(spec->host, spec->port);
+    if (!gcs) return gcs.error().prefixed("--gcs: ");
     fixed.push_back(*gcs);
   }
   if (config.clients_port != 0 || !fixed.empty()) {

@@ -75,7 +75,7 @@ struct SessionConfig {
 
   uint16_t clients_port = kSessionClientPort;  ///< --clients (0: none)
   std::string clients_bind = "127.0.0.1";
-  std::string gcs;                        ///< --gcs HOST:PORT (empty: none)
+  std::string gcs;                        ///< --gcs udp:HOST:PORT or HOST:PORT (empty: none)
   double truth_rate_hz = kTruthToClientsRate_hz;  ///< --truth-rate: truth ODOMETRY to clients (0: none)
 
   std::vector<faults::FaultSpec> faults;  ///< --fault and --scenario (docs/faults.md)

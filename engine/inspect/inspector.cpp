@@ -19,18 +19,14 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-/// --connect in the link grammar (engine/net/link_spec.h), udp:HOST:PORT, or as before HOST:PORT.
-/// Inspect times each datagram as the kernel received it, so it takes UDP only.
+/// --connect: the grammar's udp:HOST:PORT, or HOST:PORT as before (net::parse_udp_peer). Inspect
+/// times each datagram as the kernel received it, so it takes UDP only; udpin:PORT is --port.
 Expected<net::SocketAddress> connect_address(const std::string& text) {
-  const bool spelled_as_link = text.rfind("udp:", 0) == 0 || text.rfind("udpin:", 0) == 0 || text.rfind("tcp:", 0) == 0 ||
-                               text.rfind("tcpin:", 0) == 0;
-  if (!spelled_as_link) return net::SocketAddress::parse(text, "--connect");
-  auto spec = net::parse_link_spec(text);
+  if (text.rfind("udpin:", 0) == 0)
+    if (auto in = net::parse_link_spec(text))
+      return Error::input("--connect '" + text + "': inspect listens with --port " + std::to_string(in->port) + ", not udpin:");
+  auto spec = net::parse_udp_peer(text, "inspect times UDP datagrams as the kernel received them");
   if (!spec) return spec.error().prefixed("--connect ");
-  if (spec->kind == net::LinkSpec::Kind::UdpIn)
-    return Error::input("--connect '" + text + "': inspect listens with --port " + std::to_string(spec->port) + ", not udpin:");
-  if (spec->kind != net::LinkSpec::Kind::Udp)
-    return Error::input("--connect '" + text + "': inspect times UDP datagrams as the kernel received them: udp:HOST:PORT");
   auto peer = net::SocketAddress::resolve(spec->host, spec->port);
   if (!peer) return peer.error().prefixed("--connect: ");
   return peer;

@@ -1,5 +1,8 @@
 #include "engine/net/link_spec.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "engine/net/socket_address.h"
 
 namespace hitl::net {
@@ -74,6 +77,21 @@ Expected<LinkSpec> parse_link_spec(std::string_view text) {
   if (!port) return port.error();
   spec.host = std::move(parts->first);
   spec.port = *port;
+  return spec;
+}
+
+Expected<LinkSpec> parse_udp_peer(std::string_view text, std::string_view why_udp) {
+  const auto colon = text.find(':');
+  const std::string_view scheme = colon == std::string_view::npos ? std::string_view{} : text.substr(0, colon);
+  const bool spelled_as_link = std::any_of(std::begin(kKinds), std::end(kKinds), [&](const KindName& k) { return k.name == scheme; });
+  auto spec = parse_link_spec(spelled_as_link ? std::string(text) : "udp:" + std::string(text));
+  if (!spec) {
+    if (spelled_as_link) return spec.error();
+    return Error::input("'" + std::string(text) + "': expected udp:HOST:PORT or HOST:PORT");
+  }
+  spec->text = std::string(text);
+  if (spec->kind != LinkSpec::Kind::Udp)
+    return Error::input("'" + spec->text + "': " + std::string(why_udp) + ": udp:HOST:PORT (or HOST:PORT)");
   return spec;
 }
 

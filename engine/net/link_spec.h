@@ -45,4 +45,9 @@ const char* kind_name(LinkSpec::Kind kind);
 /// wrong with it; the caller adds the option it came from ("--endpoint 'x': ...").
 Expected<LinkSpec> parse_link_spec(std::string_view text);
 
+/// A UDP peer, for the options that can only send to one (inspect --connect, sim --gcs): the
+/// grammar's udp:HOST:PORT, or HOST:PORT as those options took it before. Any other kind is refused
+/// (input), saying `why_udp` ("inspect times UDP datagrams as the kernel received them").
+Expected<LinkSpec> parse_udp_peer(std::string_view text, std::string_view why_udp);
+
 }  // namespace hitl::net

@@ -13,6 +13,7 @@
 #include "base/mavlink/message_set.h"
 #include "base/mavlink/messages.h"
 #include "engine/net/open_link.h"
+#include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
 
 namespace hitl {
@@ -147,6 +148,21 @@ TEST(LinkGrammarE2E, Px4SitlTakesTheGrammarAndTheSpellingsBeforeIt) {
   }
 }
 
+TEST(LinkGrammarE2E, SimsGroundStationTakesTheGrammarsUdpAndHostPort) {
+  for (const bool spelled : {true, false}) {
+    const uint16_t qgc = test::free_udp_port();
+    test::MavlinkPeer ground_station(qgc, 0, 255, 190);  // a QGroundControl listening on its port
+    const std::string gcs = (spelled ? "udp:127.0.0.1:" : "127.0.0.1:") + std::to_string(qgc);
+    test::Process sim({test::hitl_binary(), "sim", "--gcs", gcs, "--no-vio", "--clients", std::to_string(test::free_udp_port()),
+                       "--bind", "127.0.0.1", "--local-port", std::to_string(test::free_udp_port()), "--hil-port",
+                       std::to_string(test::free_udp_port()), "--duration", "3"});
+    bool simulator = false;  // the session's own HEARTBEAT (sysid 250) reaches the ground station
+    for (const auto& f : ground_station.receive_for(3s)) simulator = simulator || f.sysid == 250;
+    EXPECT_TRUE(simulator) << gcs << ": " << sim.err();
+    sim.wait(20s);
+  }
+}
+
 TEST(LinkGrammarE2E, TheConfigFileTakesTheGrammar) {
   const std::string dir = test::temp_dir();
   const uint16_t tcp = test::free_udp_port();
@@ -173,6 +189,8 @@ TEST(LinkGrammarE2E, AMalformedLinkExits2NamingTheOptionAndTheProblem) {
       {{"arm", "--connect", "bogus"}, "--connect: 'bogus': expected udp:HOST:PORT, udpin:[HOST:]PORT, tcp:HOST:PORT or tcpin:[HOST:]PORT"},
       {{"inspect", "--connect", "tcp:127.0.0.1:5760", "--duration", "1"}, "--connect 'tcp:127.0.0.1:5760': inspect times UDP"},
       {{"inspect", "--connect", "udp:127.0.0.1", "--duration", "1"}, "--connect 'udp:127.0.0.1': expected udp:HOST:PORT"},
+      {{"sim", "--gcs", "tcp:127.0.0.1:5760", "--local-port", "0", "--duration", "1"}, "--gcs 'tcp:127.0.0.1:5760': the ground station is a UDP peer"},
+      {{"sim", "--gcs", "localhost", "--local-port", "0", "--duration", "1"}, "--gcs 'localhost': expected udp:HOST:PORT or HOST:PORT"},
       {{"sim", "--px4-sitl", "tcp:127.0.0.1:4560", "--duration", "1"}, "--px4-sitl 'tcp:127.0.0.1:4560': PX4 SITL connects to the simulator"},
       {{"sim", "--px4-sitl", "udpin:14560", "--duration", "1"}, "--px4-sitl 'udpin:14560'"},
       {{"sim", "--px4-sitl", "ftp:1", "--duration", "1"}, "--px4-sitl 'ftp:1': unknown kind 'ftp'"},

@@ -74,5 +74,29 @@ TEST(LinkSpec, MalformedValuesAreInputNamingTheValue) {
   EXPECT_NE(parse_link_spec("tcp:5760").error().message.find("expected tcp:HOST:PORT"), std::string::npos);
 }
 
+TEST(LinkSpec, AUdpPeerIsTheGrammarsUdpOrHostPortAsBefore) {
+  auto spelled = parse_udp_peer("udp:127.0.0.1:14550", "UDP only");
+  ASSERT_TRUE(spelled.ok()) << spelled.error().message;
+  EXPECT_EQ(spelled->host, "127.0.0.1");
+  EXPECT_EQ(spelled->port, 14550);
+  auto before = parse_udp_peer("localhost:14550", "UDP only");
+  ASSERT_TRUE(before.ok()) << before.error().message;
+  EXPECT_EQ(before->kind, LinkSpec::Kind::Udp);
+  EXPECT_EQ(before->host, "localhost");
+  EXPECT_EQ(before->text, "localhost:14550");
+  auto v6 = parse_udp_peer("[::1]:14550", "UDP only");
+  ASSERT_TRUE(v6.ok());
+  EXPECT_EQ(v6->host, "::1");
+  auto tcp = parse_udp_peer("tcp:127.0.0.1:5760", "UDP only");
+  ASSERT_FALSE(tcp.ok());
+  EXPECT_EQ(tcp.error().kind, ErrorKind::Input);
+  EXPECT_EQ(tcp.error().message, "'tcp:127.0.0.1:5760': UDP only: udp:HOST:PORT (or HOST:PORT)");
+  for (const char* bad : {"14550", "localhost", "udp:localhost", "host:70000"}) {
+    auto e = parse_udp_peer(bad, "UDP only");
+    ASSERT_FALSE(e.ok()) << bad;
+    EXPECT_NE(e.error().message.find(std::string("'") + bad + "'"), std::string::npos) << e.error().message;
+  }
+}
+
 }  // namespace
 }  // namespace hitl::net
