@@ -130,7 +130,7 @@ Status run_with_dashboard(const GlobalOptions& g, const bridge::BridgeConfig& co
 
 int run(const GlobalOptions& g, BridgeOptions& o) {
   for (const auto& text : o.endpoints) {
-    auto spec = bridge::parse_endpoint(text);
+    auto spec = net::parse_link_spec(text);
     if (!spec) {
       log_error("bridge", "--endpoint " + spec.error().message);
       return exit_code(spec.error());
@@ -202,7 +202,9 @@ void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local clients (other hitl commands); 0: none")
       ->capture_default_str()->check(number_in(0, 65535));
   sub->add_option("--endpoint", o->endpoints,
-                  "More links: udp:HOST:PORT (QGroundControl: udp:127.0.0.1:14550), udpin:PORT, tcp:HOST:PORT; repeatable")
+                  "More links, as mavlink-router's: udp:HOST:PORT (QGroundControl: udp:127.0.0.1:14550), udpin:[HOST:]PORT, "
+                  "tcp:HOST:PORT (reconnects every 2 s), tcpin:[HOST:]PORT (ground station tools connect, up to 16, "
+                  "as to mavlink-router's TCP port 5760); repeatable")
       ->type_name("KIND:ADDRESS");
   sub->add_option("--dedup", o->dedup_ms, "Drop a frame seen again within this many ms (arriving on two paths); 0: off")
       ->capture_default_str()->check(non_negative_number());
@@ -220,6 +222,7 @@ void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state) 
       "on stderr within 2 s; clients keep their sockets and traffic resumes by itself.\n"
       "Examples:\n"
       "  hitl bridge -i 192.168.101.2 --endpoint udp:127.0.0.1:14550   # board + QGroundControl\n"
+      "  hitl bridge --endpoint tcpin:5760                              # GCS tools connect to TCP 5760\n"
       "  hitl bridge & hitl arm && hitl fly takeoff                     # commands go through the bridge\n"
       "  hitl bridge --adb --tui                                        # board over USB through adb, dashboard");
   sub->callback([&options, &state, o]() { state.exit_code = run(options, *o); });

@@ -195,7 +195,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   const std::string cmd = "inspect";
   const int sources = (opt.port ? 1 : 0) + (opt.connect.empty() ? 0 : 1) + (opt.tlog.empty() ? 0 : 1);
   if (sources != 1) {
-    log_error(cmd, "give exactly one source: --port P, --connect HOST:PORT or --tlog FILE");
+    log_error(cmd, "give exactly one source: --port P, --connect udp:HOST:PORT or --tlog FILE");
     return kExitUsage;
   }
   auto messages = load_messages(global);
@@ -323,15 +323,15 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
   sub->footer(
       "Examples:\n"
       "  hitl inspect --port 14570 --duration 5 --expect ODOMETRY=250   # the spec's Phase 1 check\n"
-      "  hitl inspect --connect 192.168.101.2:14558 --show HEARTBEAT,ATTITUDE\n"
+      "  hitl inspect --connect udp:192.168.101.2:14558 --show HEARTBEAT,ATTITUDE\n"
       "  hitl inspect --tlog flight.tlog --json\n"
       "Exit: 0 ok (every --expect met), 1 an expectation failed, 2 bad usage or the source cannot be opened.");
   auto* src = sub->add_option_group("Source", "exactly one of --port, --connect, --tlog");
   src->add_option("--port", opt->port, "Listen passively on this UDP port (e.g. 14570 for ODOMETRY)")
       ->check(number_in(1, 65535));
   src->add_option("--connect", opt->connect,
-                  "Talk to a MAVLink instance at HOST:PORT, sending HEARTBEAT at 1 Hz so it streams to us")
-      ->type_name("HOST:PORT");
+                  "Talk to a MAVLink instance at udp:HOST:PORT (or HOST:PORT), sending HEARTBEAT at 1 Hz so it streams to us")
+      ->type_name("udp:HOST:PORT");
   src->add_option("--tlog", opt->tlog, "Read a telemetry log offline, as fast as it reads")
       ->check(CLI::ExistingFile)
       ->type_name("FILE.tlog");

@@ -1,14 +1,15 @@
 #include "cli/link_options.h"
 
 #include "cli/number_check.h"
+#include "engine/net/link_spec.h"
 
 namespace hitl::cli {
 
 void add_link_options(CLI::App* command, vehicle::LinkOptions& o) {
   const char* group = "Connection";
   command->add_option("--connect", o.connect,
-                      "auto (a running hitl sim/bridge on 127.0.0.1:14600, else the board's GCS instance), "
-                      "udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT")
+                      std::string("auto (a running hitl sim/bridge on 127.0.0.1:14600, else the board's GCS instance), ") +
+                          net::kLinkGrammar)
       ->capture_default_str()->group(group);
   command->add_option("-i,--target-ip", o.target_ip, "The board's IP for the direct path")->capture_default_str()->group(group);
   command->add_option("--port", o.gcs_port, "The board's GCS MAVLink instance")->capture_default_str()

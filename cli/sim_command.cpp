@@ -16,7 +16,7 @@
 #include "cli/sim_output.h"
 #include "engine/faults/scenario.h"
 #include "engine/hil/session.h"
-#include "engine/net/socket_address.h"
+#include "engine/hil/stack_peer.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
 #include "engine/model/x500_defaults.h"
@@ -31,7 +31,7 @@ struct SimOptions {
   std::string world_file;
   std::string trajectory_file;
   bool tui = false;  ///< --tui: the dashboard (docs/tui.md)
-  std::string px4_sitl;  ///< "tcp:4560" / "udp:14560" when --px4-sitl is given
+  std::string px4_sitl;  ///< "tcpin:4560" / "udp:HOST:PORT" when --px4-sitl is given (bare: tcpin:4560)
   bool px4_sitl_given = false;
   AdbOptions adb;  ///< --adb, --adb-serial, --adb-relay: the board through adb (docs/adb.md)
   bool no_vio = false;
@@ -112,20 +112,13 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   if (opt.no_vio) cfg.vio = false;
   if (opt.en_vio_output) cfg.vio = *opt.en_vio_output;
   if (opt.px4_sitl_given) {
-    const std::string& spec = opt.px4_sitl.empty() ? "tcp:4560" : opt.px4_sitl;
-    const auto colon = spec.find(':');
-    const std::string kind = spec.substr(0, colon);
-    if (colon == std::string::npos || (kind != "tcp" && kind != "udp")) {
-      log_error(cmd, "--px4-sitl: '" + spec + "' is not tcp:PORT or udp:PORT");
-      return kExitUsage;
+    auto sitl = hil::parse_px4_sitl(opt.px4_sitl.empty() ? "tcpin:" + std::to_string(hil::kPx4SitlTcpPort) : opt.px4_sitl,
+                                    cfg.target_ip);
+    if (!sitl) {
+      log_error(cmd, "--px4-sitl " + sitl.error().message);
+      return exit_code(sitl.error());
     }
-    auto port = net::parse_port(spec.substr(colon + 1), "--px4-sitl");
-    if (!port) {
-      log_error(cmd, port.error().message);
-      return exit_code(port.error());
-    }
-    cfg.link = kind == "tcp" ? hil::FlightStackLink::SitlTcp : hil::FlightStackLink::SitlUdp;
-    cfg.sitl_port = *port;
+    cfg.px4_sitl = *sitl;
   }
   if (cfg.local_port != 0 && cfg.local_port == cfg.clients_port &&
       (cfg.bind_address == "0.0.0.0" || cfg.bind_address == cfg.clients_bind)) {
@@ -233,7 +226,7 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       "Examples:\n"
       "  hitl sim --adb                    # board over USB through adb (hitl-adb-relay; docs/adb.md)\n"
       "  hitl sim -i 192.168.101.2         # board over USB-Ethernet\n"
-      "  hitl sim --px4-sitl               # PX4 SITL connects to TCP 4560 (lockstep)\n"
+      "  hitl sim --px4-sitl               # PX4 SITL connects to TCP 4560 (tcpin:4560, lockstep)\n"
       "  hitl sim --duration 60 --json     # headless, a JSON summary at the end\n"
       "Names of the spec's SDF plugin parameters work too (--mavlink-addr, --vio-update-rate, ...).");
   const char* link = "Board link";
@@ -246,9 +239,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       ->capture_default_str()->check(number_in(0, 65535))->group(link);
   sub->add_option("--bind", c.bind_address, "Local address for the simulator's sockets")->capture_default_str()->group(link);
   auto* px4_sitl = sub->add_option("--px4-sitl", opt->px4_sitl,
-                                   "Serve PX4 SITL's simulator_mavlink instead of a board: tcp:PORT (hitl listens, "
-                                   "default tcp:4560) or udp:PORT")
-                       ->expected(0, 1)->type_name("[tcp:4560|udp:PORT]")->group(link);
+                                   "Serve PX4 SITL's simulator_mavlink instead of a board: tcpin:[HOST:]PORT (PX4 connects; "
+                                   "bare: tcpin:4560) or udp:HOST:PORT (PX4's UDP simulator port); tcp:PORT and udp:PORT "
+                                   "(at -i) still work")
+                       ->expected(0, 1)->type_name("[tcpin:4560|udp:HOST:PORT]")->group(link);
   sub->add_option("--sysid", opt->sysid, "System id of the simulator's HEARTBEAT and frames")
       ->capture_default_str()->check(number_in(1, 255))->group(link);
   sub->add_option("--compid", opt->compid, "Component id of the simulator")->capture_default_str()->check(number_in(1, 255))->group(link);
@@ -326,8 +320,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   const char* route = "Clients and recording";
   sub->add_option("--clients", c.clients_port, "UDP port on 127.0.0.1 for local MAVLink clients (other hitl commands); 0: none")
       ->capture_default_str()->check(number_in(0, 65535))->group(route);
-  sub->add_option("--gcs", c.gcs, "Also route the board's telemetry to a ground station (QGroundControl: 127.0.0.1:14550)")
-      ->type_name("HOST:PORT")->group(route);
+  sub->add_option("--gcs", c.gcs,
+                  "Also route the board's telemetry to a ground station at udp:HOST:PORT (or HOST:PORT; QGroundControl: "
+                  "udp:127.0.0.1:14550)")
+      ->type_name("udp:HOST:PORT")->group(route);
   sub->add_option("--truth-rate", c.truth_rate_hz,
                   "Ground truth to clients as ODOMETRY (sysid " + std::to_string(hil::kSimulatorSystemId) +
                       ", estimator MOCAP), Hz; 0: none")

@@ -16,7 +16,7 @@
 #include "base/mavlink/sequence_tracker.h"
 #include "engine/net/client_port.h"
 #include "engine/net/link.h"
-#include "engine/net/tcp_links.h"
+#include "engine/net/open_link.h"
 #include "engine/net/udp_link.h"
 #include "engine/router/router.h"
 
@@ -26,6 +26,7 @@ namespace {
 namespace msg = mavlink::msg;
 constexpr double kReconnectPeriod_s = 2.0;
 constexpr int kTcpConnectTimeout_ms = 500;
+constexpr std::size_t kMaxTcpClients = 16;  ///< per --endpoint tcpin: (ground station tools)
 constexpr std::size_t kTimesyncRemembered = 8;
 constexpr std::size_t kMaxClientDatagramsPerDrain = 64;
 constexpr std::size_t kMaxDatagramsPerDrain = 256;  ///< per link and wake-up: a flood cannot hold the loop
@@ -45,44 +46,24 @@ std::string source_key(uint8_t sysid, uint8_t compid) { return std::to_string(sy
 
 /// One --endpoint: its link, its parser and its place in the router.
 struct Endpoint {
-  EndpointSpec spec;
+  net::LinkSpec spec;
   std::unique_ptr<net::Link> link;
   std::unique_ptr<mavlink::FrameParser> parser;
   uint64_t parser_connects = 0;  ///< a TCP reconnect starts a fresh parser
   router::LinkId route = 0;
 };
 
-/// The link an --endpoint names: udp:HOST:PORT hears its peer only; udpin:PORT answers whoever
-/// spoke last; tcp:HOST:PORT reconnects every kReconnectPeriod_s.
-Expected<std::unique_ptr<net::Link>> open_endpoint_link(const EndpointSpec& spec) {
-  const std::string name = "--endpoint " + spec.text;
-  if (spec.kind == EndpointSpec::Kind::Tcp) {
-    auto a = net::SocketAddress::resolve(spec.host, spec.port);
-    if (!a) return a.error().prefixed(name + ": ");
-    net::TcpClientLink::Config c;
-    c.server = *a;
-    c.name = name;
-    c.connect_timeout_ms = kTcpConnectTimeout_ms;
-    c.reconnect_period_s = kReconnectPeriod_s;
-    auto link = net::TcpClientLink::open(c);
-    if (!link) return link.error();
-    return std::unique_ptr<net::Link>(std::move(link.value()));
-  }
-  net::UdpLink::Config c;
-  c.endpoint.name = name;
-  if (spec.kind == EndpointSpec::Kind::Udp) {
-    auto a = net::SocketAddress::resolve(spec.host, spec.port);
-    if (!a) return a.error().prefixed(name + ": ");
-    c.endpoint.peer = *a;
-    c.endpoint.policy = net::PartnerPolicy::Fixed;
-    c.hear_peer_only = true;
-  } else {
-    c.endpoint.bind_port = spec.port;
-    c.endpoint.policy = net::PartnerPolicy::LastSender;
-  }
-  auto link = net::UdpLink::open(c);
-  if (!link) return link.error();
-  return std::unique_ptr<net::Link>(std::move(link.value()));
+/// The link an --endpoint names (engine/net/open_link.h): udp:HOST:PORT hears its peer only;
+/// udpin: answers whoever spoke last; tcp: reconnects every kReconnectPeriod_s; tcpin: takes up to
+/// kMaxTcpClients ground station tools.
+Expected<std::unique_ptr<net::Link>> open_endpoint_link(const net::LinkSpec& spec) {
+  net::LinkSettings settings;
+  settings.name = "--endpoint " + spec.text;
+  settings.hear_peer_only = true;
+  settings.connect_timeout_ms = kTcpConnectTimeout_ms;
+  settings.reconnect_period_s = kReconnectPeriod_s;
+  settings.max_clients = kMaxTcpClients;
+  return net::open_link(spec, settings);
 }
 
 class Bridge {
@@ -126,10 +107,13 @@ class Bridge {
       if (!link) return link.error();
       e->link = std::move(link.value());
       net::Link* raw = e->link.get();
-      e->route = router_.add_link(spec.text, [raw](std::span<const uint8_t> bytes, const auto&) {
-        // udpin: nobody to answer until someone spoke; tcp: nothing while disconnected
-        if (raw->connected() && raw->peer()) (void)raw->send(bytes);
-      });
+      e->route = router_.add_link(
+          spec.text,
+          [raw](std::span<const uint8_t> bytes, const router::Delivery& to) {
+            // udpin: nobody to answer until someone spoke; tcp, tcpin: nothing while disconnected
+            if (raw->connected() && raw->peer()) (void)raw->send_to_peers(bytes, to.except, to.only);
+          },
+          /*hub=*/raw->hub());
       endpoints_.push_back(std::move(e));
     }
     return Ok{};
@@ -210,7 +194,9 @@ class Bridge {
         e->parser_connects = e->link->stats().connects;
         e->parser = std::make_unique<mavlink::FrameParser>(messages_);
       }
-      e->link->drain(*e->parser, [&](const mavlink::Frame& f) { router_.route(f, e->route, now); }, kMaxDatagramsPerDrain);
+      e->link->drain_from(
+          *e->parser, [&](const mavlink::Frame& f, const net::SocketAddress& from) { router_.route(f, e->route, now, from); },
+          kMaxDatagramsPerDrain);
     }
     say_link_events();
   }

@@ -21,7 +21,7 @@
 #include "base/contract/board_ports.h"
 #include "base/contract/data_rates.h"
 #include "base/contract/session_status.h"
-#include "engine/bridge/endpoint_spec.h"
+#include "engine/net/link_spec.h"
 #include "engine/vehicle/vehicle_link.h"
 
 namespace hitl::bridge {
@@ -37,7 +37,7 @@ struct BridgeConfig {
   uint16_t local_port = vehicle::kDirectLocalPort;  ///< --local-port: fixed (PX4's partner lock)
   std::string clients_bind = "127.0.0.1";
   uint16_t clients_port = hitl::kSessionClientPort;  ///< --clients (0: none)
-  std::vector<EndpointSpec> endpoints;     ///< --endpoint
+  std::vector<net::LinkSpec> endpoints;    ///< --endpoint (udp:, udpin:, tcp: reconnecting, tcpin: many clients)
   double dedup_window_s = 0.1;             ///< --dedup (0: off)
   double duration_s = 0;                   ///< --duration (0: until stopped)
   double health_period_s = 1.0;
@@ -50,7 +50,7 @@ struct SourceLoss {
 };
 
 struct LinkHealth {
-  std::string name;     ///< "board", "clients", "udp:127.0.0.1:14550"
+  std::string name;     ///< "board", "clients", "udp:127.0.0.1:14550" (an --endpoint as given)
   std::string partner;  ///< peer address, or "" when none yet
   bool connected = false;
   uint64_t packets_in = 0, bytes_in = 0, packets_out = 0, bytes_out = 0, duplicates_in = 0;

@@ -10,7 +10,8 @@
 #include "base/mavlink/messages.h"
 #include "base/mavlink/severity.h"
 #include "base/mavlink/text_field.h"
-#include "engine/net/udp_link.h"
+#include "engine/net/link_spec.h"
+#include "engine/net/open_link.h"
 
 namespace hitl::hil {
 
@@ -19,22 +20,24 @@ Expected<std::unique_ptr<ClientServices>> ClientServices::open(const SessionConf
                                                                Traffic& traffic, Recording& recording) {
   auto s = std::unique_ptr<ClientServices>(new ClientServices(config, messages, stack, traffic, recording));
   if (config.vio) {
-    auto vio_target = net::SocketAddress::resolve(config.vio_ip.empty() ? config.target_ip : config.vio_ip, config.vio_port);
-    if (!vio_target) return vio_target.error().prefixed("the VIO address: ");
-    net::UdpLink::Config c;
-    c.endpoint.name = "VIO link";
-    c.endpoint.bind_address = config.bind_address;
-    c.endpoint.bind_port = 0;
-    c.endpoint.peer = *vio_target;
-    c.endpoint.policy = net::PartnerPolicy::Fixed;
-    auto link = net::UdpLink::open(c);
+    net::LinkSpec vio;  // udp:VIO_IP:VIO_PORT from an ephemeral port
+    vio.kind = net::LinkSpec::Kind::Udp;
+    vio.host = config.vio_ip.empty() ? config.target_ip : config.vio_ip;
+    vio.port = config.vio_port;
+    net::LinkSettings settings;
+    settings.name = "VIO link";
+    settings.host_what = "the VIO address";
+    settings.bind_address = config.bind_address;
+    auto link = net::open_link(vio, settings);
     if (!link) return link.error();
     s->vio_ = std::move(link.value());
   }
   std::vector<net::SocketAddress> fixed;
   if (!config.gcs.empty()) {
-    auto gcs = net::SocketAddress::parse(config.gcs, "--gcs");
-    if (!gcs) return gcs.error();
+    auto spec = net::parse_udp_peer(config.gcs, "the ground station is a UDP peer of the client port");
+    if (!spec) return spec.error().prefixed("--gcs ");
+    auto gcs = net::SocketAddress::resolve(spec->host, spec->port);
+    if (!gcs) return gcs.error().prefixed("--gcs: ");
     fixed.push_back(*gcs);
   }
   if (config.clients_port != 0 || !fixed.empty()) {

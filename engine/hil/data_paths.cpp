@@ -8,7 +8,7 @@ namespace {
 constexpr std::size_t kImu = 0, kMag = 1, kBaro = 2, kGps = 3;
 }  // namespace
 
-DataPaths::DataPaths(const SessionConfig& config) {
+DataPaths::DataPaths(const SessionConfig& config, bool lockstep) {
   const auto& sensors = config.vehicle.sensors;
   auto add = [&](const char* name, std::string_view message, bool outgoing, double rate_hz, bool scales) {
     Path p;
@@ -27,7 +27,6 @@ DataPaths::DataPaths(const SessionConfig& config) {
     odometry_ = paths_.size();
     add("ODOMETRY", mavlink::msg::Odometry::kName, true, config.vio_rate_hz, true);
   }
-  const bool lockstep = config.lockstep || config.link != FlightStackLink::BoardUdp;
   // Lockstep: one answer per sensor message, so the IMU's pace; otherwise the board's own clock.
   add("actuators", mavlink::msg::HilActuatorControls::kName, false, lockstep ? sensors.imu.rate_hz : kActuatorStreamRate_hz,
       lockstep);

@@ -35,8 +35,9 @@ struct DataPathStats {
 
 class DataPaths {
  public:
-  /// The paths this configuration has (no ODOMETRY with --no-vio).
-  explicit DataPaths(const SessionConfig& config);
+  /// The paths this configuration has (no ODOMETRY with --no-vio); `lockstep`: the flight stack
+  /// answers each sensor message (StackPeer::lockstep()).
+  DataPaths(const SessionConfig& config, bool lockstep);
 
   void on_hil_sensor(bool imu, bool mag, bool baro, double now_s);
   void on_hil_gps(double now_s);

@@ -33,16 +33,19 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   if (auto st = check_step_divides_sensor_periods(config.world.physics.step_s, vehicle); !st) return st.error();
 
   // s.config, not config: the parts keep a reference to it.
-  auto stack = StackLink::open(s.config, s.messages, s.traffic, s.recording, s.clock);
+  auto peer = StackPeer::decide(s.config);
+  if (!peer) return peer.error();
+  auto stack = StackLink::open(s.config, std::move(peer.value()), s.messages, s.traffic, s.recording, s.clock);
   if (!stack) return stack.error();
   s.stack = std::move(stack.value());
   auto services = ClientServices::open(s.config, s.messages, *s.stack, s.traffic, s.recording);
   if (!services) return services.error();
   s.services = std::move(services.value());
   if (config.trajectory) {
-    if (config.link == FlightStackLink::SitlTcp)
-      return Error::usage("a trajectory cannot be flown over PX4 SITL's TCP simulator link, which takes only HIL "
-                          "messages; fly it with `hitl fly trajectory` against PX4's GCS port instead");
+    if (!s.stack->peer().carries_client_traffic())
+      return Error::usage(std::string("a trajectory cannot be flown over ") + s.stack->peer().name() +
+                          "'s TCP simulator link, which takes only HIL messages; fly it with `hitl fly trajectory` "
+                          "against PX4's GCS port instead");
     vehicle::PilotConfig pc;
     pc.home_alt_msl_m = config.world.home.alt_m;
     pc.mode = config.trajectory_mode;
@@ -61,7 +64,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     return Error::input("the spin (spin_us) must be 0 to " + std::to_string(static_cast<int>(Pacer::kMaxSpin_s * 1e6)) + " us");
   // One step of simulated time per tick.
   s.pacer.emplace(config.world.physics.step_s, config.speed, config.spin_us * 1e-6);
-  s.paths.emplace(config);
+  s.paths.emplace(config, s.stack->lockstep());
   s.loop_latency.emplace(s.stack->lockstep());
   s.fault_schedule = faults::FaultSchedule(config.faults);
   s.sensor_faults.emplace(config.world.atmosphere);
@@ -100,7 +103,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
                        "--no-noise: PX4 marks a sensor stale after ~100 identical values, so a flight stack on the "
                        "other end will refuse to arm; use it for tests only"});
   if (s.config.realtime) ask_for_realtime(observer);
-  if (s.config.link == FlightStackLink::SitlTcp && !s.stack->wait_for_sitl(stop, observer)) return EndReason::Stopped;
+  if (!s.stack->wait_until_connected(stop, observer)) return EndReason::Stopped;
   // The default 50 us timer slack would show up as jitter in every HIL_SENSOR interval.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   s.start_wall_s = monotonic_s();
@@ -129,8 +132,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       break;
     }
     if (s.stack->gone()) {
-      observer.on_event({Severity::Error, "PX4 SITL disconnected; PX4 never reconnects to a simulator, so this session "
-                                          "ends (restart PX4 and hitl sim together)"});
+      observer.on_event({Severity::Error, s.stack->peer().lost_text()});
       reason = EndReason::FlightStackGone;
       break;
     }

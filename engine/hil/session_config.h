@@ -15,6 +15,7 @@
 #include "engine/faults/fault_spec.h"
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
+#include "engine/net/link_spec.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/vehicle/trajectory_pilot.h"
 
@@ -37,20 +38,13 @@ using ::hitl::kSimulatorComponentId;  // the session's identity and status: base
 using ::hitl::kSimulatorSystemId;
 using ::hitl::kVioComponentId;
 
-/// Who is on the other end of the HIL link.
-enum class FlightStackLink {
-  BoardUdp,  ///< a VOXL2 / PX4 in HIL mode: UDP to target:hil_port from local_port
-  SitlTcp,   ///< PX4 SITL's simulator_mavlink: hitl listens on TCP, PX4 connects, lockstep on PX4's clock
-  SitlUdp    ///< the same over UDP (simulator_mavlink built for UDP)
-};
-
 struct SessionConfig {
-  FlightStackLink link = FlightStackLink::BoardUdp;
+  /// --px4-sitl: PX4 SITL's simulator link instead of a board (stack_peer.h decides what follows)
+  std::optional<net::LinkSpec> px4_sitl;
   std::string target_ip = "127.0.0.1";   ///< -i / --target-ip / --mavlink-addr
   uint16_t hil_port = kBoardHilPort;      ///< --hil-port / --mavlink-udp-remote-port
   uint16_t local_port = kSimLocalPort;    ///< --local-port / --mavlink-udp-local-port
   std::string bind_address = "0.0.0.0";
-  uint16_t sitl_port = kPx4SitlTcpPort;   ///< --px4-sitl tcp:PORT / udp:PORT
 
   bool vio = true;                        ///< --no-vio / --en-vio-output
   std::string vio_ip;                     ///< --vio-ip (empty: the target IP)
@@ -81,7 +75,7 @@ struct SessionConfig {
 
   uint16_t clients_port = kSessionClientPort;  ///< --clients (0: none)
   std::string clients_bind = "127.0.0.1";
-  std::string gcs;                        ///< --gcs HOST:PORT (empty: none)
+  std::string gcs;                        ///< --gcs udp:HOST:PORT or HOST:PORT (empty: none)
   double truth_rate_hz = kTruthToClientsRate_hz;  ///< --truth-rate: truth ODOMETRY to clients (0: none)
 
   std::vector<faults::FaultSpec> faults;  ///< --fault and --scenario (docs/faults.md)

@@ -31,8 +31,7 @@ SessionSnapshot make_snapshot(const SnapshotSources& in) {
 
   const auto& link = in.stack.link();
   const auto& actuators = in.stack.actuators();
-  // SITL: PX4 connected; a board: its actuators arriving.
-  s.connected = in.config.link == FlightStackLink::SitlTcp ? link.connected() : actuators.ever_received();
+  s.connected = in.stack.connected();  // a stream: connected; a datagram link: the answers arriving
   if (link.peer()) s.partner = link.peer()->to_string();
   s.armed = actuators.armed();
   s.motor_commands = actuators.last_controls();

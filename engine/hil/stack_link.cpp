@@ -7,10 +7,9 @@
 
 #include "base/common/clock.h"
 #include "base/mavlink/messages.h"
-#include "engine/net/tcp_links.h"
+#include "engine/net/open_link.h"
 
 #include <poll.h>
-#include "engine/net/udp_link.h"
 
 namespace hitl::hil {
 
@@ -19,34 +18,18 @@ bool is_hil_message(uint32_t msgid) {
          msgid == mavlink::msg::HilActuatorControls::kId || msgid == mavlink::msg::HilStateQuaternion::kId;
 }
 
-Expected<std::unique_ptr<StackLink>> StackLink::open(const SessionConfig& config, const mavlink::MessageSet& messages,
+Expected<std::unique_ptr<StackLink>> StackLink::open(const SessionConfig& config, StackPeer peer, const mavlink::MessageSet& messages,
                                                      Traffic& traffic, Recording& recording, const PauseClock& clock) {
-  std::unique_ptr<net::Link> link;
-  if (config.link == FlightStackLink::SitlTcp) {
-    auto server = net::TcpServerLink::listen(config.bind_address, config.sitl_port, "--px4-sitl");
-    if (!server) return server.error();
-    link = std::move(server.value());
-  } else {
-    const uint16_t remote = config.link == FlightStackLink::SitlUdp ? config.sitl_port : config.hil_port;
-    auto target = net::resolve_board_address(config.target_ip, remote);
-    if (!target) return target.error();
-    net::UdpLink::Config c;
-    c.endpoint.name = "HIL link (--local-port)";
-    c.endpoint.bind_address = config.bind_address;
-    c.endpoint.bind_port = config.local_port;
-    c.endpoint.peer = *target;
-    c.endpoint.policy = net::PartnerPolicy::Fixed;
-    c.hear_peer_only = true;  // PX4 answers from its own port; anything else is not our board
-    auto udp = net::UdpLink::open(c);
-    if (!udp) return udp.error();
-    link = std::move(udp.value());
-  }
-  return std::unique_ptr<StackLink>(new StackLink(config, std::move(link), messages, traffic, recording, clock));
+  auto link = net::open_link(peer.link(), peer.link_settings());
+  if (!link) return link.error();
+  return std::unique_ptr<StackLink>(
+      new StackLink(config, std::move(peer), std::move(link.value()), messages, traffic, recording, clock));
 }
 
-StackLink::StackLink(const SessionConfig& config, std::unique_ptr<net::Link> link, const mavlink::MessageSet& messages,
-                     Traffic& traffic, Recording& recording, const PauseClock& clock)
+StackLink::StackLink(const SessionConfig& config, StackPeer peer, std::unique_ptr<net::Link> link,
+                     const mavlink::MessageSet& messages, Traffic& traffic, Recording& recording, const PauseClock& clock)
     : config_(config),
+      peer_(std::move(peer)),
       link_(std::move(link)),
       encoder_(config.sysid, config.compid, config.protocol),
       parser_(messages),
@@ -56,23 +39,21 @@ StackLink::StackLink(const SessionConfig& config, std::unique_ptr<net::Link> lin
       actuators_(config.actuator_timeout_s),
       link_faults_(config.seed, "hil-drop") {}
 
-bool StackLink::wait_for_sitl(const std::atomic<bool>& stop, EventSink& events) {
+bool StackLink::wait_until_connected(const std::atomic<bool>& stop, EventSink& events) {
+  if (!peer_.connects_in()) return true;
   const std::string local = link_->local_address() ? link_->local_address()->to_string() : "?";
-  events.on_event({Severity::Info, "waiting for PX4 SITL to connect to TCP " + local +
-                                       "; start PX4 now, in its build tree: PX4_SYS_AUTOSTART=10016 "
-                                       "PX4_SIM_MODEL=none_iris build/px4_sitl_default/bin/px4 (docs/sim.md adds the "
-                                       "x500 geometry as PX4_PARAM_ variables)"});
+  events.on_event({Severity::Info, std::string("waiting for ") + peer_.name() + " to connect to TCP " + local + "; " + peer_.start_hint()});
   const double wait_start_s = monotonic_s();
   double next_note_s = wait_start_s + 10.0;
   while (!link_->wait_connected(200)) {
     if (stop.load()) return false;
     if (monotonic_s() >= next_note_s) {
       next_note_s += 10.0;
-      events.on_event({Severity::Info, "still waiting for PX4 SITL on TCP " + std::to_string(link_->local_address()->port()) +
+      events.on_event({Severity::Info, std::string("still waiting for ") + peer_.name() + " on TCP " + std::to_string(link_->local_address()->port()) +
                                            " (" + std::to_string(static_cast<int>(monotonic_s() - wait_start_s)) + " s)"});
     }
   }
-  events.on_event({Severity::Info, "PX4 SITL connected from " + link_->peer()->to_string()});
+  events.on_event({Severity::Info, std::string(peer_.name()) + " connected from " + link_->peer()->to_string()});
   return true;
 }
 
@@ -160,8 +141,9 @@ std::string StackLink::peer_text() const {
 
 std::string StackLink::describe() const {
   const std::string local = link_->local_address() ? link_->local_address()->to_string() : "?";
-  if (config_.link == FlightStackLink::SitlTcp) return "serving PX4 SITL on TCP " + local + " (lockstep)";
-  return "HIL_SENSOR/HIL_GPS to " + peer_text() + " from " + local + (config_.lockstep ? " (lockstep)" : "");
+  const char* lockstep = peer_.lockstep() ? " (lockstep)" : "";
+  if (peer_.connects_in()) return std::string("serving ") + peer_.name() + " on TCP " + local + lockstep;
+  return "HIL_SENSOR/HIL_GPS to " + peer_text() + " from " + local + lockstep;
 }
 
 // --- lockstep --------------------------------------------------------------------------------
@@ -173,7 +155,7 @@ void StackLink::lockstep_wait(EventSink& events, const std::function<void()>& dr
     // --lockstep) answers from the first HIL_SENSOR: wait for that once, so that the steps never run
     // ahead of it and the same input gives the same session (docs/replay.md "Deterministic
     // sessions"); one that does not is not waited for again until heard (not a fallback).
-    if (sitl() || waited_first_) return;
+    if (!peer_.answers_first_sensor() || waited_first_) return;
     waited_first_ = true;
     const double deadline = monotonic_s() + config_.lockstep_timeout_s;
     while (!actuators_.ever_received() && !gone()) {
@@ -226,7 +208,7 @@ void StackLink::lockstep_wait(EventSink& events, const std::function<void()>& dr
 }
 
 bool StackLink::lockstep_dead(EventSink& events) {
-  if (!lockstep() || config_.link == FlightStackLink::SitlTcp || !actuators_.last_heard_s()) return false;
+  if (!lockstep() || peer_.link_tells_loss() || !actuators_.last_heard_s()) return false;
   const double silent_s = clock_.unpaused_s(monotonic_s()) - *actuators_.last_heard_s();
   if (silent_s < kLockstepGiveUp_s) return false;
   char text[512];
@@ -243,14 +225,15 @@ void StackLink::check_clock_ahead(EventSink& events) {
   if (warned_clock_ahead_ || !lockstep() || !actuators_.ever_received()) return;
   const int64_t offset_us = actuators_.last_echo_offset_us();
   char text[512];
-  if (sitl() && offset_us >= static_cast<int64_t>(ActuatorInput::kEchoWindow_us)) {
+  const bool echoes = peer_.answer_clock() == AnswerClock::SensorTime;
+  if (echoes && offset_us >= static_cast<int64_t>(ActuatorInput::kEchoWindow_us)) {
     std::snprintf(text, sizeof text,
                   "lockstep: PX4 SITL's answers are stamped %.1f s ahead of this session's clock: it still runs on "
                   "an earlier session's time and cannot go back, so it will not take these sensors as new. Restart "
                   "PX4 SITL together with hitl sim",
                   static_cast<double>(offset_us) * 1e-6);
     events.on_event({Severity::Warning, text});
-  } else if (!sitl() && actuators_.counters().foreign_clock >= 10) {
+  } else if (!echoes && actuators_.counters().foreign_clock >= 10) {
     std::snprintf(text, sizeof text,
                   "lockstep: the board stamps its answers with its own clock, not the HIL_SENSOR's time_usec (a "
                   "PX4 board in HIL mode does; hitl target --lockstep echoes it): each answer counts, late ones "
@@ -278,20 +261,9 @@ std::string StackLink::no_answer_text() const {
     return "no HIL_ACTUATOR_CONTROLS: nothing reached the flight stack, every send failed (" + std::to_string(errors) +
            " messages; " + traffic_.last_send_error + ")";
   if (errors > 0)
-    return no_answer_cause() + "; and " + std::to_string(errors) + " messages could not be sent (" +
+    return peer_.no_answer_cause(peer_text(), config_.no_answer_warning_s) + "; and " + std::to_string(errors) + " messages could not be sent (" +
            traffic_.last_send_error + ")";
-  return no_answer_cause();
-}
-
-std::string StackLink::no_answer_cause() const {
-  if (sitl())
-    return "no HIL_ACTUATOR_CONTROLS from PX4 SITL yet; still sending. Is PX4 started with a simulator "
-           "airframe (e.g. 10016 none_iris)?";
-  return "no HIL_ACTUATOR_CONTROLS from " + peer_text() + " within " +
-         std::to_string(static_cast<int>(config_.no_answer_warning_s)) +
-         " s of the first HIL_SENSOR; still sending. Likely causes: the board's HIL instance is locked to an "
-         "earlier session's port (restart PX4 on the board: voxl-px4-hitl start), HIL is not enabled (SYS_HITL must "
-         "be 1), or the wrong IP (-i)";
+  return peer_.no_answer_cause(peer_text(), config_.no_answer_warning_s);
 }
 
 }  // namespace hitl::hil

@@ -1,5 +1,6 @@
-// The session's side of the flight stack: the board over UDP (heard only from the target's
-// address), or PX4 SITL's simulator link over TCP (PX4 connects). It owns the net::Link, the HIL
+// The session's side of the flight stack: the link StackPeer (stack_peer.h) names, opened by
+// net::open_link (the board over UDP, heard only from the target's address, or PX4 SITL's
+// simulator link, PX4 connecting over TCP). It owns the net::Link, the HIL
 // link's encoder and parser, the actuator input the answers feed, and lockstep: waiting for the
 // answer to each HIL_SENSOR, stepping on after a timeout, giving up on a stack silent for
 // kLockstepGiveUp_s, and saying when the answers run on another clock (docs/sim.md "Time").
@@ -19,6 +20,7 @@
 #include "engine/hil/recording.h"
 #include "engine/hil/session_config.h"
 #include "engine/hil/session_events.h"
+#include "engine/hil/stack_peer.h"
 #include "engine/hil/traffic.h"
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/frame_parser.h"
@@ -40,12 +42,14 @@ class StackLink {
   /// Any frame from the flight stack other than the actuator answers' bookkeeping (they come too).
   using FrameHandler = std::function<void(const mavlink::Frame&, double now_s)>;
 
-  /// Opens the board's UDP link or listens for PX4 SITL; a port in use or a bad address is an Error.
-  static Expected<std::unique_ptr<StackLink>> open(const SessionConfig& config, const mavlink::MessageSet& messages,
-                                                         Traffic& traffic, Recording& recording, const PauseClock& clock);
+  /// Opens the link `peer` names (the board's UDP link, or listens for PX4 SITL); a port in use or
+  /// a bad address is an Error.
+  static Expected<std::unique_ptr<StackLink>> open(const SessionConfig& config, StackPeer peer, const mavlink::MessageSet& messages,
+                                                   Traffic& traffic, Recording& recording, const PauseClock& clock);
 
-  /// PX4 SITL: waits for it to connect (saying how, and every 10 s how long); false when stopped.
-  bool wait_for_sitl(const std::atomic<bool>& stop, EventSink& events);
+  /// A stack that connects in (StackPeer::connects_in()): waits for it (saying how, and every 10 s
+  /// how long); false when stopped. True at once for any other.
+  bool wait_until_connected(const std::atomic<bool>& stop, EventSink& events);
 
   // --- sending: queued into one datagram (or one TCP write) per step, sent by flush() ---------
   template <class M>
@@ -71,7 +75,7 @@ class StackLink {
   void drain(double now_s, const FrameHandler& on_frame);
 
   // --- lockstep ------------------------------------------------------------------------------
-  bool lockstep() const { return config_.lockstep || sitl(); }
+  bool lockstep() const { return peer_.lockstep(); }
   /// Waits for the answer to the HIL_SENSOR just sent, calling `drain_all` as data arrives.
   void lockstep_wait(EventSink& events, const std::function<void()>& drain_all);
   /// Lockstep against a stack silent for kLockstepGiveUp_s: true (said once) when the session should end.
@@ -82,9 +86,11 @@ class StackLink {
   void check_answered(EventSink& events);
   void on_hil_sensor_sent(double wall_s);
 
-  /// PX4 SITL went away (it never reconnects).
+  /// A stream to the stack went away (PX4 SITL never reconnects): the session ends.
   bool gone() const { return link_->closed(); }
-  bool sitl() const { return config_.link == FlightStackLink::SitlTcp || config_.link == FlightStackLink::SitlUdp; }
+  /// The stack is there: connected (a stream), or answering (a datagram link).
+  bool connected() const { return peer_.link_tells_connected() ? link_->connected() : actuators_.ever_received(); }
+  const StackPeer& peer() const { return peer_; }
   ActuatorInput& actuators() { return actuators_; }
   const ActuatorInput& actuators() const { return actuators_; }
   const net::Link& link() const { return *link_; }
@@ -97,16 +103,16 @@ class StackLink {
   static constexpr std::size_t kMaxDatagramsPerDrain = 256;
 
  private:
-  StackLink(const SessionConfig& config, std::unique_ptr<net::Link> link, const mavlink::MessageSet& messages,
-                  Traffic& traffic, Recording& recording, const PauseClock& clock);
+  StackLink(const SessionConfig& config, StackPeer peer, std::unique_ptr<net::Link> link, const mavlink::MessageSet& messages,
+            Traffic& traffic, Recording& recording, const PauseClock& clock);
   void queue(std::span<const uint8_t> bytes, std::optional<uint32_t> counted_id);
   /// Sends what the link holds as one datagram and counts its messages (batch_).
   void send_batch();
   std::string no_answer_text() const;
-  std::string no_answer_cause() const;
   std::string peer_text() const;
 
   const SessionConfig& config_;
+  StackPeer peer_;
   std::unique_ptr<net::Link> link_;
   mavlink::FrameEncoder encoder_;  ///< the HIL link's sequence
   mavlink::FrameParser parser_;

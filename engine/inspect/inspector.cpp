@@ -1,5 +1,7 @@
 #include "engine/inspect/inspector.h"
 
+#include "engine/net/link_spec.h"
+
 #include "base/common/clock.h"
 #include <algorithm>
 #include <chrono>
@@ -12,6 +14,23 @@ namespace hitl::inspect {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+namespace {
+
+/// --connect: the grammar's udp:HOST:PORT, or HOST:PORT as before (net::parse_udp_peer). Inspect
+/// times each datagram as the kernel received it, so it takes UDP only; udpin:PORT is --port.
+Expected<net::SocketAddress> connect_address(const std::string& text) {
+  if (text.rfind("udpin:", 0) == 0)
+    if (auto in = net::parse_link_spec(text))
+      return Error::input("--connect '" + text + "': inspect listens with --port " + std::to_string(in->port) + ", not udpin:");
+  auto spec = net::parse_udp_peer(text, "inspect times UDP datagrams as the kernel received them");
+  if (!spec) return spec.error().prefixed("--connect ");
+  auto peer = net::SocketAddress::resolve(spec->host, spec->port);
+  if (!peer) return peer.error().prefixed("--connect: ");
+  return peer;
+}
 
 }  // namespace
 
@@ -33,7 +52,7 @@ Expected<std::unique_ptr<Inspector>> Inspector::open(const InspectConfig& config
       break;
     }
     case InspectConfig::Source::Connect: {
-      auto peer = net::SocketAddress::parse(config.connect, "--connect");
+      auto peer = connect_address(config.connect);
       if (!peer) return peer.error();
       net::UdpEndpoint::Config ec;
       ec.name = "--connect";

@@ -7,6 +7,9 @@
 //                                tunnel is behind one: its peer is the tunnel's local end (adb_tunnel.h).
 //   TcpClientLink  (tcp_links.h) a TCP connection to a MAVLink server, reconnecting when asked to
 //   TcpServerLink  (tcp_links.h) a TCP listener one client connects to (PX4 SITL's simulator link)
+//   TcpHubLink     (tcp_hub_link.h) a TCP listener many clients connect to (ground station tools)
+//
+// Users name them in one grammar (link_spec.h) and open_link() (open_link.h) creates them.
 //
 // Datagram links carry one or more whole frames per datagram; stream links carry bytes. drain()
 // hides the difference: it parses what arrived with the caller's FrameParser either way.
@@ -58,6 +61,7 @@ struct LinkChunk {
 class Link {
  public:
   using ChunkHandler = std::function<void(const LinkChunk&)>;
+  using SourcedFrameHandler = std::function<void(const mavlink::Frame&, const SocketAddress& from)>;
   static constexpr std::size_t kAll = std::numeric_limits<std::size_t>::max();
 
   virtual ~Link() = default;
@@ -70,11 +74,18 @@ class Link {
   /// read_some() into a parser: a datagram is parsed as one, stream bytes are fed.
   std::size_t drain(mavlink::FrameParser& parser, const mavlink::FrameParser::FrameHandler& on_frame,
                     std::size_t max_reads = kAll);
+  /// drain() that says who sent each frame; a hub parses each client's stream apart (with parsers
+  /// of `parser`'s message set).
+  virtual std::size_t drain_from(mavlink::FrameParser& parser, const SourcedFrameHandler& on_frame, std::size_t max_reads = kAll);
   /// Waits up to timeout_ms for something to read; false on timeout (or when not connected).
   virtual bool wait_readable(int timeout_ms) const = 0;
 
   /// Sends now: one datagram, or all bytes on the stream.
   virtual Status send(std::span<const uint8_t> bytes) = 0;
+  /// A hub (hub()): sends to every client but `except`, or to those in `only` when it is not empty.
+  /// Any other link has one peer: it sends unless that peer is `except` or not in `only`.
+  virtual Status send_to_peers(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except,
+                               std::span<const SocketAddress> only);
   /// Adds a frame to what flush() sends as one datagram (or one write); check has_room_for() first.
   virtual void queue(std::span<const uint8_t> frame) = 0;
   virtual bool has_room_for(std::size_t bytes) const = 0;
@@ -87,6 +98,8 @@ class Link {
   /// Makes the link up again when it is down and it reconnects by itself (a TCP client); cheap.
   virtual void maintain(double /*now_s*/) {}
 
+  /// Many peers at once (a TCP listener ground station tools connect to): a router's hub link.
+  virtual bool hub() const { return false; }
   /// Can carry traffic now: a UDP socket always, a stream while connected.
   virtual bool connected() const = 0;
   /// A stream that was up and went away without coming back by itself (PX4 SITL never reconnects).

@@ -21,7 +21,8 @@ Expected<TcpServer> TcpServer::listen(const std::string& bind_address, uint16_t 
     const int err = errno;
     ::close(fd);
     return Error::unavailable(name + ": cannot listen on TCP " + addr->to_string() + ": " +
-                 (err == EADDRINUSE ? std::string("address already in use (another simulator is serving PX4 there)")
+                 (err == EADDRINUSE ? "address already in use: another process listens there (find it with: ss -tlpn 'sport = :" +
+                                          std::to_string(port) + "')"
                                     : std::string(std::strerror(err))));
   }
   sockaddr_storage local{};

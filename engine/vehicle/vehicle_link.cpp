@@ -1,50 +1,27 @@
 #include "engine/vehicle/vehicle_link.h"
 
 #include "base/common/clock.h"
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <chrono>
 
 #include "base/mavlink/enums.h"
 #include "base/mavlink/heartbeat.h"
-#include "engine/net/tcp_links.h"
-#include "engine/net/udp_link.h"
+#include "engine/net/open_link.h"
 
 namespace hitl::vehicle {
 namespace {
 
-Expected<std::unique_ptr<net::Link>> open_udp(const std::string& bind, uint16_t port, std::optional<net::SocketAddress> peer,
-                                              net::PartnerPolicy policy, const std::string& name) {
-  net::UdpLink::Config c;
-  c.endpoint.bind_address = bind;
-  c.endpoint.bind_port = port;
-  c.endpoint.peer = peer;
-  c.endpoint.policy = policy;
-  c.endpoint.name = name;
-  auto link = net::UdpLink::open(c);
-  if (!link) return link.error();
-  return std::unique_ptr<net::Link>(std::move(link.value()));
-}
-
-/// True unless the kernel says at once that nothing listens there (a connected UDP socket gets the
-/// ICMP port-unreachable as ECONNREFUSED; on loopback that takes microseconds).
-bool maybe_listening(const net::SocketAddress& address) {
-  const int fd = ::socket(address.family(), SOCK_DGRAM | SOCK_CLOEXEC, 0);
-  if (fd < 0) return true;
-  bool listening = true;
-  const uint8_t probe = 0;  // not a MAVLink frame: a listener counts it as garbage and moves on
-  if (::connect(fd, address.get(), address.length()) == 0 && ::send(fd, &probe, 1, 0) == 1) {
-    pollfd p{fd, POLLIN, 0};
-    if (::poll(&p, 1, 50) > 0) {
-      uint8_t buf[1];
-      if (::recv(fd, buf, sizeof buf, MSG_DONTWAIT) < 0 && errno == ECONNREFUSED) listening = false;
-    }
-  }
-  ::close(fd);
-  return listening;
+/// The direct UDP link auto takes: from `local_port` to `peer`, which never changes.
+Expected<std::unique_ptr<net::Link>> open_udp_to(const net::SocketAddress& peer, const std::string& bind, uint16_t local_port,
+                                                 const std::string& name) {
+  net::LinkSpec spec;
+  spec.kind = net::LinkSpec::Kind::Udp;
+  spec.host = peer.host();
+  spec.port = peer.port();
+  net::LinkSettings settings;
+  settings.name = name;
+  settings.bind_address = bind;
+  settings.local_port = local_port;
+  return net::open_link(spec, settings);
 }
 
 }  // namespace
@@ -120,8 +97,8 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
   if (spec == "auto") {
     // A running session first: it routes to the board, whose instance answers only the session.
     auto session = net::SocketAddress::resolve("127.0.0.1", options.session_port);
-    if (session && maybe_listening(*session)) {
-      auto ep = open_udp("127.0.0.1", 0, *session, net::PartnerPolicy::Fixed, "session client");
+    if (session && net::udp_listener_may_be_at(*session)) {
+      auto ep = open_udp_to(*session, "127.0.0.1", 0, "session client");
       if (ep) {
         link = make(std::move(ep.value()), "through the session on 127.0.0.1:" + std::to_string(options.session_port));
         if (link->discover(std::min(options.timeout_s, 1.5))) return link;
@@ -129,7 +106,7 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
     }
     auto board = net::resolve_board_address(options.target_ip, options.gcs_port);
     if (!board) return board.error();
-    auto ep = open_udp("0.0.0.0", options.local_port, *board, net::PartnerPolicy::Fixed, "--local-port");
+    auto ep = open_udp_to(*board, "0.0.0.0", options.local_port, "--local-port");
     if (!ep)
       // Failed, not Unavailable: the port is taken by another command talking to the board (the
       // board is owned, as "no board answered"), and hitl params/arm/... exit 1 for it.
@@ -137,30 +114,34 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
                    " is busy: another hitl command is talking to the board; run `hitl bridge` and let every command "
                    "go through it (" + ep.error().message + ")");
     link = make(std::move(ep.value()), "direct to " + board->to_string() + " from port " + std::to_string(options.local_port));
-  } else if (spec.rfind("udp:", 0) == 0) {
-    auto peer = net::SocketAddress::parse(spec.substr(4), "--connect");
-    if (!peer) return peer.error();
-    auto ep = open_udp("0.0.0.0", options.local_port, *peer, net::PartnerPolicy::Fixed, "--local-port");
-    if (!ep) return ep.error();
-    link = make(std::move(ep.value()), "to " + peer->to_string() + " from port " + std::to_string(options.local_port));
-  } else if (spec.rfind("udpin:", 0) == 0) {
-    auto port = net::parse_port(spec.substr(6), "--connect udpin");
-    if (!port) return port.error();
-    auto ep = open_udp("0.0.0.0", *port, std::nullopt, net::PartnerPolicy::LastSender, "--connect udpin");
-    if (!ep) return ep.error();
-    link = make(std::move(ep.value()), "listening on UDP " + std::to_string(*port));
-  } else if (spec.rfind("tcp:", 0) == 0) {
-    auto peer = net::SocketAddress::parse(spec.substr(4), "--connect");
-    if (!peer) return peer.error();
-    net::TcpClientLink::Config c;
-    c.server = *peer;
-    c.name = "--connect";
-    c.connect_timeout_ms = static_cast<int>(options.timeout_s * 1000);
-    auto tcp = net::TcpClientLink::open(c);  // no reconnect: a lost connection ends the command
-    if (!tcp) return tcp.error();
-    link = make(std::move(tcp.value()), "over TCP to " + peer->to_string());
   } else {
-    return Error::input("--connect: '" + spec + "' is not auto, udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT");
+    // One grammar (engine/net/link_spec.h); what each kind means for a command's link:
+    // udp: from the fixed --local-port; tcp: no reconnect (a lost connection ends the command);
+    // tcpin: one client (the autopilot's side connects), waited for within --timeout.
+    auto parsed = net::parse_link_spec(spec);
+    if (!parsed) return Error::input("--connect: " + parsed.error().message + " (or auto)");
+    net::LinkSettings settings;
+    settings.name = parsed->kind == net::LinkSpec::Kind::Udp ? "--local-port" : "--connect " + parsed->text;
+    settings.host_what = "--connect";
+    settings.local_port = options.local_port;
+    settings.connect_timeout_ms = static_cast<int>(options.timeout_s * 1000);
+    auto opened = net::open_link(*parsed, settings);
+    if (!opened) return opened.error();
+    std::string description;
+    const auto local = opened.value()->local_address();
+    const std::string port_text = local ? std::to_string(local->port()) : std::to_string(parsed->port);
+    switch (parsed->kind) {
+      case net::LinkSpec::Kind::Udp:
+        description = "to " + opened.value()->peer()->to_string() + " from port " + std::to_string(options.local_port);
+        break;
+      case net::LinkSpec::Kind::UdpIn: description = "listening on UDP " + port_text; break;
+      case net::LinkSpec::Kind::Tcp: description = "over TCP to " + opened.value()->peer()->to_string(); break;
+      case net::LinkSpec::Kind::TcpIn: description = "serving TCP " + port_text; break;
+    }
+    if (parsed->kind == net::LinkSpec::Kind::TcpIn && !opened.value()->wait_connected(static_cast<int>(options.timeout_s * 1000)))
+      return Error{"no autopilot connected to TCP " + port_text + " (--connect " + parsed->text + ") within " +
+                   std::to_string(static_cast<int>(options.timeout_s)) + " s"};
+    link = make(std::move(opened.value()), description);
   }
   const bool found = link->discover(options.timeout_s);
   if (!found && !link->send_error_.empty()) return Error{"no autopilot " + link->description() + ": " + link->send_error_};

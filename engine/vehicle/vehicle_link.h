@@ -3,9 +3,11 @@
 //     (127.0.0.1:14600) when one answers; else straight to the board's GCS instance (-i IP, 14558)
 //     from the fixed local port 14562. Never the HIL port and never an ephemeral local port: a PX4
 //     MAVLink instance answers only the first address and port it heard, for the life of its process.
-//   udp:HOST:PORT   talk to that address from --local-port (default 14562)
-//   udpin:PORT      listen on PORT and answer whoever talks first
-//   tcp:HOST:PORT   a TCP MAVLink server (mavlink-router, MAVProxy, PX4 started with -t)
+// or a link in the one grammar (engine/net/link_spec.h):
+//   udp:HOST:PORT       talk to that address from --local-port (default 14562)
+//   udpin:[HOST:]PORT   listen on PORT and answer whoever talks first
+//   tcp:HOST:PORT       a TCP MAVLink server (mavlink-router, MAVProxy, PX4 started with -t)
+//   tcpin:[HOST:]PORT   listen on TCP PORT for the autopilot's side to connect (within --timeout)
 // The autopilot is discovered from its HEARTBEAT (autopilot != MAV_AUTOPILOT_INVALID).
 #pragma once
 
@@ -76,7 +78,7 @@ class VehicleLink {
   void heartbeat();
   bool discover(double timeout_s);
 
-  std::unique_ptr<net::Link> link_;  ///< UDP (auto, udp:, udpin:) or TCP (tcp:; a lost connection stays closed)
+  std::unique_ptr<net::Link> link_;  ///< UDP (auto, udp:, udpin:) or TCP (tcp:, tcpin:; a lost connection stays closed)
   mavlink::MessageSet messages_;
   mavlink::FrameParser parser_;
   mavlink::FrameEncoder encoder_;

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/common_options.h"
-#include "engine/bridge/endpoint_spec.h"
+#include "engine/net/link_spec.h"
 #include "engine/mavlink/dialect_xml.h"
 #include "engine/model/config_json.h"
 #include "engine/net/socket_address.h"
@@ -53,10 +53,11 @@ TEST(EngineErrorKinds, AMalformedValueIsInputAndNamesNoOption) {
   auto port = net::parse_port("seventy", "the port");
   ASSERT_FALSE(port);
   EXPECT_EQ(port.error().kind, ErrorKind::Input);
-  auto endpoint = bridge::parse_endpoint("bogus");
+  auto endpoint = net::parse_link_spec("bogus");
   ASSERT_FALSE(endpoint);
   EXPECT_EQ(endpoint.error().kind, ErrorKind::Input);
-  EXPECT_EQ(endpoint.error().message, "'bogus': expected udp:HOST:PORT, udpin:PORT or tcp:HOST:PORT");  // cli adds --endpoint
+  EXPECT_EQ(endpoint.error().message,
+            "'bogus': expected udp:HOST:PORT, udpin:[HOST:]PORT, tcp:HOST:PORT or tcpin:[HOST:]PORT");  // cli adds --endpoint
 }
 
 TEST(EngineErrorKinds, APortInUseIsUnavailable) {

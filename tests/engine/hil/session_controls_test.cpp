@@ -94,7 +94,7 @@ TEST(SessionControls, PauseHoldsAndSendsNothingResetKeepsTheWireClock) {
 TEST(DataPaths, RatesByFieldsUpdatedAndLossFromSequenceGaps) {
   SessionConfig c;
   c.vehicle = model::x500_vehicle_config();
-  DataPaths paths(c);
+  DataPaths paths(c, /*lockstep=*/false);
   const double t0 = 100.0;
   for (int k = 0; k < 250; ++k) paths.on_hil_sensor(true, k % 5 == 0, k % 25 == 0, t0 + k * 0.004);
   for (int k = 0; k < 30; ++k) paths.on_hil_gps(t0 + k / 30.0);
@@ -127,7 +127,7 @@ TEST(DataPaths, RatesByFieldsUpdatedAndLossFromSequenceGaps) {
   // Lockstep: one answer per sensor message; no ODOMETRY with --no-vio.
   c.lockstep = true;
   c.vio = false;
-  DataPaths lockstep(c);
+  DataPaths lockstep(c, /*lockstep=*/true);
   lockstep.roll(1.0, 1.0);
   const auto l = lockstep.stats(1.0);
   ASSERT_EQ(l.size(), 5u);

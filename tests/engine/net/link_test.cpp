@@ -11,6 +11,8 @@
 #include "base/mavlink/frame_parser.h"
 #include "base/mavlink/messages.h"
 #include "engine/net/link.h"
+#include "engine/net/open_link.h"
+#include "engine/net/tcp_hub_link.h"
 #include "engine/net/tcp_links.h"
 #include "engine/net/udp_link.h"
 
@@ -225,6 +227,130 @@ TEST(TcpLinks, ClientReconnectsSayingSoAndSaysAFailedAttemptOnce) {
   events = cl.take_events();
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].text, c.name + ": connection closed; reconnecting every 2 s");
+}
+
+/// The first frame `link` hears within timeout_s, with who sent it.
+std::optional<std::pair<uint8_t, SocketAddress>> frame_from(Link& link, mavlink::FrameParser& parser, double timeout_s = 2.0) {
+  std::optional<std::pair<uint8_t, SocketAddress>> got;
+  const double end = monotonic_s() + timeout_s;
+  while (!got && monotonic_s() < end) {
+    link.maintain(monotonic_s());
+    if (!link.wait_readable(20)) continue;
+    link.drain_from(parser, [&](const mavlink::Frame& f, const SocketAddress& from) {
+      if (!got) got.emplace(f.sysid, from);
+    });
+  }
+  return got;
+}
+
+TEST(TcpHubLink, ClientsComeAndGoEachStreamParsedApartAndSendsReachThoseAsked) {
+  auto hub = TcpHubLink::listen("127.0.0.1", 0, 2, "--endpoint tcpin:0");
+  ASSERT_TRUE(hub.ok()) << hub.error().message;
+  auto& h = *hub.value();
+  EXPECT_TRUE(h.hub());
+  EXPECT_FALSE(h.connected());
+  TcpClientLink::Config c;
+  c.server = *h.local_address();
+  c.name = "gcs";
+  auto a = TcpClientLink::open(c);
+  auto b = TcpClientLink::open(c);
+  ASSERT_TRUE(a.ok() && b.ok());
+  const double end = monotonic_s() + 2.0;
+  while (h.client_count() < 2 && monotonic_s() < end) h.maintain(monotonic_s());
+  ASSERT_EQ(h.client_count(), 2u);
+  EXPECT_TRUE(h.connected());
+  EXPECT_EQ(h.stats().connects, 2u);
+  EXPECT_EQ(h.take_events().size(), 2u);  // "... connected (n connected)"
+
+  // Half a frame from A, then all of B's, then the rest of A's: each stream parsed on its own.
+  mavlink::FrameEncoder ea(11, 1), eb(12, 1);
+  const auto fa = heartbeat_frame(11, ea), fb = heartbeat_frame(12, eb);
+  ASSERT_TRUE(a.value()->send(std::span<const uint8_t>(fa).first(6)).ok());
+  static const auto messages = mavlink::MessageSet::compiled();
+  mavlink::FrameParser parser(messages);
+  ASSERT_TRUE(b.value()->send(fb).ok());
+  auto got_b = frame_from(h, parser);
+  ASSERT_TRUE(got_b);
+  EXPECT_EQ(got_b->first, 12);
+  ASSERT_TRUE(a.value()->send(std::span<const uint8_t>(fa).subspan(6)).ok());
+  auto got_a = frame_from(h, parser);
+  ASSERT_TRUE(got_a);
+  EXPECT_EQ(got_a->first, 11);
+  EXPECT_NE(got_a->second, got_b->second);
+
+  // To every client but A (a frame A sent, routed back to the hub): B only.
+  mavlink::FrameEncoder board(1, 1);
+  ASSERT_TRUE(h.send_to_peers(heartbeat_frame(1, board), got_a->second, {}).ok());
+  EXPECT_EQ(sysids_heard(*b.value(), 1), (std::vector<uint8_t>{1}));
+  EXPECT_TRUE(sysids_heard(*a.value(), 1, 0.2).empty());
+  // To every client.
+  ASSERT_TRUE(h.send(heartbeat_frame(1, board)).ok());
+  EXPECT_EQ(sysids_heard(*a.value(), 1).size(), 1u);
+  EXPECT_EQ(sysids_heard(*b.value(), 1).size(), 1u);
+
+  // A third client is one too many: refused, said once.
+  auto third = TcpClientLink::open(c);
+  ASSERT_TRUE(third.ok());
+  const double later = monotonic_s() + 1.0;
+  std::vector<LinkEvent> events;
+  while (events.empty() && monotonic_s() < later) {
+    h.maintain(monotonic_s());
+    events = h.take_events();
+  }
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_NE(events[0].text.find("refused"), std::string::npos) << events[0].text;
+  EXPECT_EQ(h.client_count(), 2u);
+
+  // A goes: B stays served, the hub says so.
+  a.value().reset();
+  const double gone = monotonic_s() + 2.0;
+  while (h.client_count() > 1 && monotonic_s() < gone) (void)frame_from(h, parser, 0.05);
+  EXPECT_EQ(h.client_count(), 1u);
+  ASSERT_TRUE(h.send(heartbeat_frame(1, board)).ok());
+  EXPECT_EQ(sysids_heard(*b.value(), 1).size(), 1u);
+}
+
+TEST(OpenLink, EachKindOfTheGrammarOpensItsLink) {
+  LinkSettings settings;
+  settings.name = "test";
+  settings.bind_address = "127.0.0.1";
+  // udpin: answers whoever spoke; udp: talks to it from the fixed local port asked for.
+  auto listener = udp(0, PartnerPolicy::LastSender);
+  const uint16_t port = listener->local_address()->port();
+  listener.reset();
+  auto udpin = open_link(parse_link_spec("udpin:127.0.0.1:" + std::to_string(port)).value(), settings);
+  ASSERT_TRUE(udpin.ok()) << udpin.error().message;
+  EXPECT_EQ(udpin.value()->local_address()->port(), port);
+  auto out = open_link(parse_link_spec("udp:127.0.0.1:" + std::to_string(port)).value(), settings);
+  ASSERT_TRUE(out.ok()) << out.error().message;
+  mavlink::FrameEncoder e(7, 1);
+  ASSERT_TRUE(out.value()->send(heartbeat_frame(7, e)).ok());
+  EXPECT_EQ(sysids_heard(*udpin.value(), 1), (std::vector<uint8_t>{7}));
+
+  // tcpin: one client (PX4 SITL), or a hub with max_clients > 1; tcp: connects to it.
+  auto server = open_link(parse_link_spec("tcpin:127.0.0.1:" + std::to_string(port)).value(), settings);
+  ASSERT_TRUE(server.ok()) << server.error().message;
+  EXPECT_FALSE(server.value()->hub());
+  auto client = open_link(parse_link_spec("tcp:127.0.0.1:" + std::to_string(port)).value(), settings);
+  ASSERT_TRUE(client.ok()) << client.error().message;
+  ASSERT_TRUE(server.value()->wait_connected(1000));
+  server.value().reset();
+  settings.max_clients = 4;
+  auto hub = open_link(parse_link_spec("tcpin:127.0.0.1:" + std::to_string(port)).value(), settings);
+  ASSERT_TRUE(hub.ok()) << hub.error().message;
+  EXPECT_TRUE(hub.value()->hub());
+
+  // What cannot be opened names the link and the address.
+  auto taken = open_link(parse_link_spec("tcpin:127.0.0.1:" + std::to_string(port)).value(), settings);
+  ASSERT_FALSE(taken.ok());
+  EXPECT_EQ(taken.error().kind, ErrorKind::Unavailable);
+  EXPECT_NE(taken.error().message.find("test: cannot listen on TCP 127.0.0.1:" + std::to_string(port)), std::string::npos)
+      << taken.error().message;
+  settings.host_what = "-i (the board's address)";
+  auto unresolvable = open_link(parse_link_spec("udp:no-such-host.invalid:14550").value(), settings);
+  ASSERT_FALSE(unresolvable.ok());
+  EXPECT_EQ(unresolvable.error().message.rfind("-i (the board's address): cannot resolve host 'no-such-host.invalid'", 0), 0u)
+      << unresolvable.error().message;
 }
 
 }  // namespace

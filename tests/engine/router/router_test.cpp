@@ -9,7 +9,6 @@
 #include "base/mavlink/message_check.h"
 #include "base/mavlink/message_set.h"
 #include "base/mavlink/messages.h"
-#include "engine/bridge/endpoint_spec.h"
 #include "engine/router/router.h"
 
 namespace hitl::router {
@@ -223,24 +222,6 @@ TEST_F(RouterTest, DuplicatesWithinTheWindowAreDroppedOnceAndCounted) {
   EXPECT_EQ(r.counters(lb).duplicates_in, 1u);
   EXPECT_EQ(r.route(frame(msg::Heartbeat{}, 1, 1, 6), lb, 0.2), 2u);  // a new seq is a new frame
   EXPECT_EQ(r.route(f, lb, 1.0), 2u);  // outside the window: passes again
-}
-
-TEST(EndpointSpec, ParsesTheThreeKindsAndNamesWhatIsWrong) {
-  auto udp = bridge::parse_endpoint("udp:127.0.0.1:14550");
-  ASSERT_TRUE(udp.ok());
-  EXPECT_EQ(udp->kind, bridge::EndpointSpec::Kind::Udp);
-  EXPECT_EQ(udp->port, 14550);
-  auto in = bridge::parse_endpoint("udpin:14551");
-  ASSERT_TRUE(in.ok());
-  EXPECT_EQ(in->kind, bridge::EndpointSpec::Kind::UdpIn);
-  auto tcp = bridge::parse_endpoint("tcp:localhost:5760");
-  ASSERT_TRUE(tcp.ok());
-  EXPECT_EQ(tcp->host, "localhost");
-  for (const char* bad : {"14550", "serial:/dev/ttyUSB0", "udp:127.0.0.1", "udp:host:99999", "udpin:x"}) {
-    auto e = bridge::parse_endpoint(bad);
-    ASSERT_FALSE(e.ok()) << bad;
-    EXPECT_NE(e.error().message.find(bad), std::string::npos) << e.error().message;
-  }
 }
 
 }  // namespace
