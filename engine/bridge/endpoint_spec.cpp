@@ -4,7 +4,37 @@
 
 namespace hitl::bridge {
 
+namespace {
+
+/// The options after '?' (only `lossless` today), kept apart from the address grammar.
+Status parse_endpoint_options(std::string_view options, EndpointSpec& spec, const std::string& what) {
+  if (options != "lossless")
+    return Error::input(what + ": unknown option '" + std::string(options) + "' (lossless)");
+  if (spec.kind == EndpointSpec::Kind::Tcp)
+    return Error::input(what + ": a tcp: endpoint loses nothing already (the stream waits for its reader); "
+                               "?lossless is for udp: and udpin:");
+  spec.lossless = true;
+  return Ok{};
+}
+
+Expected<EndpointSpec> parse_address(std::string_view text);
+
+}  // namespace
+
 Expected<EndpointSpec> parse_endpoint(std::string_view text) {
+  const auto question = text.find('?');
+  auto spec = parse_address(text.substr(0, question));
+  if (!spec) return spec.error();
+  spec->text = std::string(text);
+  if (question != std::string_view::npos) {
+    if (auto st = parse_endpoint_options(text.substr(question + 1), *spec, "'" + spec->text + "'"); !st) return st.error();
+  }
+  return spec;
+}
+
+namespace {
+
+Expected<EndpointSpec> parse_address(std::string_view text) {
   EndpointSpec spec;
   spec.text = std::string(text);
   const std::string what = "'" + spec.text + "'";  // the value, not the option it came from
@@ -32,5 +62,7 @@ Expected<EndpointSpec> parse_endpoint(std::string_view text) {
   spec.port = *port;
   return spec;
 }
+
+}  // namespace
 
 }  // namespace hitl::bridge
