@@ -207,9 +207,9 @@ void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state) 
                   "More links: udp:HOST:PORT (QGroundControl: udp:127.0.0.1:14550), udpin:PORT, tcp:HOST:PORT; a udp: or udpin: one may end in ?lossless (never dropped to: a recorder); repeatable")
       ->type_name("KIND:ADDRESS");
   sub->add_option("--queue-ms", c.queue_ms,
-                  "Fresh under overload: the board socket's buffer and the clients' queue hold this many ms of traffic; "
-                  "beyond it the oldest frames are dropped (counted by link and message). An --endpoint ending in "
-                  "?lossless (udp:HOST:PORT?lossless, a recorder) gets every frame taken in")
+                  "Fresh under overload: the clients' queue holds this many ms of their sending time; beyond it the "
+                  "oldest frames are dropped (counted by link and message). An --endpoint ending in ?lossless "
+                  "(udp:HOST:PORT?lossless, a recorder) gets every frame taken in")
       ->capture_default_str()->check(number_in(0.1, 10000.0));
   sub->add_option("--dedup", o->dedup_ms, "Drop a frame seen again within this many ms (arriving on two paths); 0: off")
       ->capture_default_str()->check(non_negative_number());

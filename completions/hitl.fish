@@ -307,7 +307,7 @@ complete -c hitl -n '__hitl_at "bridge"' -l port -r -f -d 'The board\'s GCS MAVL
 complete -c hitl -n '__hitl_at "bridge"' -l local-port -r -f -d 'Local port towards the board: fixed, since PX4 answers only the first port it heard'
 complete -c hitl -n '__hitl_at "bridge"' -l clients -r -f -d 'UDP port on 127.0.0.1 for local clients'
 complete -c hitl -n '__hitl_at "bridge"' -l endpoint -r -f -d 'More links: udp:HOST:PORT'
-complete -c hitl -n '__hitl_at "bridge"' -l queue-ms -r -f -d 'Fresh under overload: the board socket\'s buffer and the clients\' queue hold this many ms...'
+complete -c hitl -n '__hitl_at "bridge"' -l queue-ms -r -f -d 'Fresh under overload: the clients\' queue holds this many ms of their sending time'
 complete -c hitl -n '__hitl_at "bridge"' -l dedup -r -f -d 'Drop a frame seen again within this many ms'
 complete -c hitl -n '__hitl_at "bridge"' -l duration -r -f -d 'Seconds to run'
 complete -c hitl -n '__hitl_at "bridge"' -l tui -d 'The live dashboard'

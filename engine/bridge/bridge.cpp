@@ -127,7 +127,7 @@ class Bridge {
 
     if (config_.clients_port != 0) {
       net::ClientPortLimits limits = kClientLimits;
-      limits.max_queue_s = config_.queue_ms / 1000.0 / 2;  // half of --queue-ms here, half in the board socket
+      limits.max_queue_s = config_.queue_ms / 1000.0;
       auto cp = net::ClientPort::open(config_.clients_bind, config_.clients_port, {}, limits);
       if (!cp) return cp.error().suffixed(" (is a hitl sim or another hitl bridge running? --clients 0 disables)");
       clients_.emplace(std::move(cp.value()));
@@ -168,7 +168,7 @@ class Bridge {
       return text;
     };
     std::string out = "socket buffers granted: board receive " + granted(board_buffer_asked_, board_buffers_.receive_bytes, "net.core.rmem_max") +
-                      " (then sized to " + format_ms(config_.queue_ms) + " of the board's stream)";
+                      " (then sized to " + format_ms(kBoardBuffer_ms) + " of the board's stream)";
     if (clients_) {
       const auto b = clients_->buffer_sizes();
       out += ", clients send " + granted(kClientLimits.send_buffer_bytes, b.send_bytes, "net.core.wmem_max") + ", clients receive " +
@@ -222,18 +222,28 @@ class Bridge {
                        [](const auto& e) { return e->waiting.size() + kRoomForADatagram <= kMaxLosslessQueueFrames; });
   }
 
+  /// Board datagrams read per loop turn: four times what a turn sends to the clients (the newest
+  /// are taken in and the oldest dropped, without reading a hundred frames for each one a
+  /// 100-client fan-out can send), at least 32, at most kMaxDatagramsPerDrain.
+  std::size_t board_reads_per_turn() const {
+    if (!clients_ || clients_->client_count() == 0) return kMaxDatagramsPerDrain;
+    const std::size_t per_turn = 4 * kClientLimits.max_datagrams_out / clients_->client_count();
+    return std::clamp<std::size_t>(per_turn, 32, kMaxDatagramsPerDrain);
+  }
+
   void drain(double now) {
     // The board is read as fast as it sends (what is too old is dropped in the clients' queue,
     // oldest first, and counted by message); its socket's backlog is what the loop left unread.
     const std::size_t waiting_bytes = board_udp_->receive_queue_bytes();
+    const std::size_t max_reads = board_reads_per_turn();
     std::size_t reads = 0;
-    for (; reads < kMaxDatagramsPerDrain; ++reads) {
+    for (; reads < max_reads; ++reads) {
       if (!lossless_room()) break;  // sent first, then taken in
       if (board_->drain(board_parser_, [&](const mavlink::Frame& f) { on_board_frame(f, now); }, 1) == 0) break;
     }
     board_reads_ += reads;
     // Emptied: what the socket held per datagram (the kernel's cost, to size its buffer in time).
-    if (reads > 0 && reads < kMaxDatagramsPerDrain && waiting_bytes > 0) {
+    if (reads > 0 && reads < max_reads && waiting_bytes > 0) {
       const double per = static_cast<double>(waiting_bytes) / static_cast<double>(reads);
       datagram_truesize_ = datagram_truesize_ <= 0 ? per : 0.9 * datagram_truesize_ + 0.1 * per;
     }
@@ -294,18 +304,20 @@ class Bridge {
     }
   }
 
-  /// The board socket's receive buffer holds half of --queue-ms of the board's stream as read in
-  /// the last period (the clients' queue holds the other half; the kernel doubles what it is asked
-  /// for): under overload the kernel drops the rest (counted) instead of keeping seconds of
-  /// backlog; at a board's usual rates the minimum holds.
+  /// The board socket's receive buffer holds kBoardBuffer_ms of the board's stream as it arrived
+  /// in the last period (read or dropped by the kernel) (the kernel doubles what it is asked for): under overload the kernel drops the
+  /// rest (counted) instead of keeping seconds of backlog; at a board's usual rates the minimum holds.
   void size_board_buffer(double now) {
     const double period_s = now - last_sized_s_;
     if (period_s <= 0) return;
-    const double rate_hz = static_cast<double>(board_reads_ - reads_at_last_size_) / period_s;
+    // The board's stream: what was read and what the kernel dropped (sized by what was read
+    // alone, a buffer that overflows would shrink itself further).
+    const uint64_t arrived = board_reads_ + board_->stats().kernel_rx_drops;
+    const double rate_hz = static_cast<double>(arrived - arrived_at_last_size_) / period_s;
     last_sized_s_ = now;
-    reads_at_last_size_ = board_reads_;
+    arrived_at_last_size_ = arrived;
     const double truesize = datagram_truesize_ > 0 ? datagram_truesize_ : kDefaultDatagramTruesize_bytes;
-    const double want = rate_hz * truesize * (config_.queue_ms / 1000.0 / 2) / 2.0;
+    const double want = rate_hz * truesize * kBoardBuffer_ms / 1000.0 / 2.0;
     const int asked = static_cast<int>(std::clamp(want, static_cast<double>(kBoardReceiveMin_bytes), static_cast<double>(kBoardReceiveMax_bytes)));
     if (std::abs(asked - board_buffer_asked_) * 5 < board_buffer_asked_) return;  // within 20 %: leave it
     board_buffer_asked_ = asked;
@@ -484,7 +496,7 @@ class Bridge {
   net::UdpLink* board_udp_ = nullptr;  ///< the same link: its socket's buffer and drop count
   net::UdpEndpoint::BufferSizes board_buffers_;
   int board_buffer_asked_ = 0;
-  uint64_t board_reads_ = 0, reads_at_last_size_ = 0;
+  uint64_t board_reads_ = 0, arrived_at_last_size_ = 0;
   double last_sized_s_ = 0, datagram_truesize_ = 0;
   std::optional<net::ClientPort> clients_;
   std::vector<std::unique_ptr<Endpoint>> endpoints_;

@@ -41,17 +41,18 @@ struct BridgeConfig {
   double dedup_window_s = 0.1;             ///< --dedup (0: off)
   double duration_s = 0;                   ///< --duration (0: until stopped)
   double health_period_s = 1.0;
-  /// --queue-ms: the most a fresh link holds back under overload, in milliseconds of traffic: the
-  /// board socket's receive buffer holds half of it of the board's measured stream (within
-  /// kBoardReceiveMin/Max_bytes) and the clients' queue the other half of their measured sending
-  /// time (at least kMinClientQueueFrames); beyond that the oldest frames are dropped and counted.
+  /// --queue-ms: the most the clients' queue holds back under overload, in milliseconds of their
+  /// measured sending time (at least kMinClientQueueFrames, and at least what one loop turn sends);
+  /// beyond it the oldest frames are dropped and counted. The board socket's receive buffer holds
+  /// kBoardBuffer_ms of the board's measured stream (within kBoardReceiveMin/Max_bytes).
   /// `?lossless` endpoints are never dropped to (the board waits in its socket for them instead).
-  double queue_ms = 2;
+  double queue_ms = 20;
 };
 
-inline constexpr int kBoardReceiveMin_bytes = 64 << 10;   ///< asked for at least (the kernel doubles it)
+inline constexpr double kBoardBuffer_ms = 2;              ///< of the board's stream, as read: the board is read as fast as it sends
+inline constexpr int kBoardReceiveMin_bytes = 32 << 10;   ///< asked for at least (the kernel doubles it: ~78 small datagrams on loopback)
 inline constexpr int kBoardReceiveMax_bytes = 1 << 20;    ///< asked for at most
-inline constexpr std::size_t kMinClientQueueFrames = 64;  ///< the clients' queue never holds fewer (a stall of the loop is not overload)
+inline constexpr std::size_t kMinClientQueueFrames = 32;  ///< the clients' queue never holds fewer (a stall of the loop is not overload)
 inline constexpr std::size_t kMaxLosslessQueueFrames = 4096;  ///< a ?lossless endpoint's frames waiting for its send buffer
 
 struct SourceLoss {

@@ -70,7 +70,9 @@ std::size_t ClientPort::queue_limit() const {
   const double per_datagram_s = send_s_per_datagram_ > 0 ? send_s_per_datagram_ : kAssumedSendTime_s;
   const double per_frame_s = per_datagram_s * static_cast<double>(std::max<std::size_t>(1, clients_.size()));
   const auto frames = static_cast<std::size_t>(limits_.max_queue_s / per_frame_s);
-  return std::clamp(frames, std::min(limits_.min_queued_frames, limits_.max_queued_frames), limits_.max_queued_frames);
+  // Never fewer than one pump() sends to every client: what one loop turn takes in is sent, not dropped.
+  const std::size_t floor = std::max(limits_.min_queued_frames, limits_.max_datagrams_out / std::max<std::size_t>(1, clients_.size()));
+  return std::clamp(frames, std::min(floor, limits_.max_queued_frames), limits_.max_queued_frames);
 }
 
 void ClientPort::drop_oldest(Queue& queue) {

@@ -45,7 +45,8 @@ struct ClientPortLimits {
   int send_buffer_bytes = 0;            ///< SO_SNDBUF asked for (0: the kernel's default)
   int receive_buffer_bytes = 1 << 20;   ///< SO_RCVBUF asked for
   /// > 0: the board's queue is sized in sending time: at most this many seconds of sends (the
-  /// measured time per datagram times the clients), at least min_queued_frames, at most
+  /// measured time per datagram times the clients), at least min_queued_frames and what one pump()
+  /// sends to every client, at most
   /// max_queued_frames; a full queue drops its oldest frame. 0: max_queued_frames, a full queue
   /// refuses the newest (the session's clients).
   double max_queue_s = 0;

@@ -86,9 +86,11 @@ class BridgeFresh : public ::testing::Test {
   static constexpr uint32_t kBurst = 4001;
 
   void start(std::vector<std::string> extra = {}) {
+    // --queue-ms 0.1: the clients' queue at its floor (what one loop turn sends them), fewer
+    // frames than the board socket's smallest buffer holds.
     std::vector<std::string> args = {test::hitl_binary(), "--json", "bridge", "-i", "127.0.0.1", "--port", std::to_string(gcs_),
                                      "--local-port", std::to_string(local_), "--clients", std::to_string(clients_port_),
-                                     "--duration", "60"};
+                                     "--queue-ms", "0.1", "--duration", "60"};
     args.insert(args.end(), extra.begin(), extra.end());
     bridge_ = std::make_unique<test::Process>(args);
     ASSERT_TRUE(bridge_->wait_for_stderr("clients on", 10s)) << bridge_->err();
