@@ -50,7 +50,7 @@ struct BridgeConfig {
 };
 
 inline constexpr double kBoardBuffer_ms = 2;              ///< of the board's stream, as read: the board is read as fast as it sends
-inline constexpr int kBoardReceiveMin_bytes = 32 << 10;   ///< asked for at least (the kernel doubles it: ~78 small datagrams on loopback)
+inline constexpr int kBoardReceiveMin_bytes = 64 << 10;   ///< asked for at least (the kernel doubles it: ~157 small datagrams on loopback, 157 ms at 1,000/s)
 inline constexpr int kBoardReceiveMax_bytes = 1 << 20;    ///< asked for at most
 inline constexpr std::size_t kMinClientQueueFrames = 32;  ///< the clients' queue never holds fewer (a stall of the loop is not overload)
 inline constexpr std::size_t kMaxLosslessQueueFrames = 4096;  ///< a ?lossless endpoint's frames waiting for its send buffer
