@@ -6,7 +6,7 @@
 // latency p50/p99/max (board send to the kernel's arrival time at the client), the bridge's CPU. One JSON object per run on stdout, a table on stderr.
 //
 //   build/bench/bridge/bridge_load_bench [--hitl PATH] [--seconds S] [--clients 1,10,100] [--rates 0,1000]
-//                                        [--peer CMD] [--lossless]
+//                                        [--peer CMD] [--lossless] [--bridge-args "--queue-ms 500"]
 //
 // --rates: board frames per second, 0 = flat out. --hitl runs another build's binary (main's), so
 // the same command measures before and after. --peer CMD runs a mavlink-router beside it in the
@@ -14,7 +14,7 @@
 // `-e 127.0.0.1:PORT` per client, the board side `127.0.0.1:PORT` in server mode), e.g.
 // `--peer /root/peers/mavlink-router/build/src/mavlink-routerd`. --lossless adds one more
 // listener behind hitl's `--endpoint udp:127.0.0.1:PORT?lossless` and reports what it lost after
-// intake. Both routers' intake is read the same way: the kernel's drop count of the socket on the
+// intake; --bridge-args adds options to `hitl bridge`. Both routers' intake is read the same way: the kernel's drop count of the socket on the
 // board side (/proc/net/udp), so "lost after intake" means the same for both. Bounded: each run
 // lasts S seconds plus ~4 s.
 #include <arpa/inet.h>
@@ -114,6 +114,7 @@ struct Run {
   double seconds = 3;
   std::string peer;    ///< a mavlink-routerd command instead of hitl ("": hitl)
   bool lossless = false;  ///< hitl: one more listener behind --endpoint udp:...?lossless
+  std::string hitl_args;  ///< more `hitl bridge` options (--bridge-args "--queue-ms 500")
 };
 
 /// The kernel's drop count of the UDP socket bound to `port` (any address), from /proc/net/udp.
@@ -183,6 +184,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
             std::to_string(local_port), "--clients", std::to_string(clients_port), "--duration",
             std::to_string(static_cast<int>(run.seconds) + 30)};
     if (recorder.fd >= 0) argv.insert(argv.end(), {"--endpoint", "udp:127.0.0.1:" + std::to_string(port_of(recorder.fd)) + "?lossless"});
+    for (const auto& w : split_words(run.hitl_args)) argv.push_back(w);
   }
   hitl::test::Process bridge(argv);
   if (!is_peer && !bridge.wait_for_stderr("clients on", 10s)) {
@@ -413,7 +415,7 @@ void print_row(const nlohmann::json& j, double rate) {
 }
 
 int main(int argc, char** argv) {
-  std::string hitl = hitl::test::hitl_binary(), peer;
+  std::string hitl = hitl::test::hitl_binary(), peer, bridge_args;
   double seconds = 3;
   bool lossless = false;
   std::vector<double> clients = {1, 10, 100}, rates = {0, 1000};
@@ -423,11 +425,12 @@ int main(int argc, char** argv) {
     if (a == "--lossless") lossless = true;
     else if (a == "--hitl" && has_value) hitl = argv[++i];
     else if (a == "--peer" && has_value) peer = argv[++i];
+    else if (a == "--bridge-args" && has_value) bridge_args = argv[++i];
     else if (a == "--seconds" && has_value) seconds = std::atof(argv[++i]);
     else if (a == "--clients" && has_value) clients = list_of(argv[++i]);
     else if (a == "--rates" && has_value) rates = list_of(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: %s [--hitl PATH] [--seconds S] [--clients 1,10,100] [--rates 0,1000] [--peer CMD] [--lossless]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--hitl PATH] [--seconds S] [--clients 1,10,100] [--rates 0,1000] [--peer CMD] [--lossless] [--bridge-args \"--queue-ms 500\"]\n", argv[0]);
       return 2;
     }
   }
@@ -438,7 +441,7 @@ int main(int argc, char** argv) {
   for (const double rate : rates) {
     for (const double n : clients) {
       for (int router = 0; router < (peer.empty() ? 1 : 2); ++router) {
-        const auto j = run_once(hitl, Run{static_cast<int>(n), rate, seconds, router == 0 ? std::string{} : peer, lossless && router == 0});
+        const auto j = run_once(hitl, Run{static_cast<int>(n), rate, seconds, router == 0 ? std::string{} : peer, lossless && router == 0, bridge_args});
         std::printf("%s\n", j.dump().c_str());
         std::fflush(stdout);
         print_row(j, rate);
