@@ -82,9 +82,10 @@ std::string to_line(const bridge::BridgeHealth& h) {
   if (h.kernel_rx_drops) line += "  kernel rx drops " + std::to_string(h.kernel_rx_drops);
   for (const auto& l : h.links) {
     if (l.name == "board") continue;
-    const std::string who = l.name == "clients" ? "clients" : l.name;
-    if (l.dropped) line += "  " + who + " dropped " + std::to_string(l.dropped) + " (oldest first)";
-    if (l.send_errors) line += "  " + who + " send errors " + std::to_string(l.send_errors);
+    // The clients' queue drops its oldest; an endpoint, the frame that found its send buffer full.
+    const bool clients = l.name == "clients";
+    if (l.dropped) line += "  " + l.name + " dropped " + std::to_string(l.dropped) + (clients ? " (oldest first)" : "");
+    if (l.send_errors) line += "  " + l.name + " send errors " + std::to_string(l.send_errors);
   }
   return line;
 }
