@@ -35,7 +35,7 @@ nlohmann::json to_json(const bridge::BridgeHealth& h) {
                       {"rtt_ms", h.rtt_ms ? nlohmann::json(*h.rtt_ms) : nlohmann::json(nullptr)},
                       {"clients", h.clients}, {"duplicates", h.duplicates},
                       {"ignored_other_address", h.ignored_other_address}, {"untracked_frames", h.untracked_frames},
-                      {"kernel_rx_drops", h.kernel_rx_drops}};
+                      {"kernel_rx_drops", h.kernel_rx_drops}, {"board_receive_buffer_bytes", h.board_receive_buffer_bytes}};
   nlohmann::json loss = nlohmann::json::object();
   for (const auto& [source, l] : h.loss) loss[source] = {{"received", l.received}, {"lost", l.lost}, {"loss_pct", l.loss_pct}};
   j["loss"] = loss;
@@ -44,7 +44,8 @@ nlohmann::json to_json(const bridge::BridgeHealth& h) {
     links.push_back({{"name", l.name}, {"partner", l.partner}, {"connected", l.connected}, {"packets_in", l.packets_in},
                      {"bytes_in", l.bytes_in}, {"packets_out", l.packets_out}, {"bytes_out", l.bytes_out},
                      {"duplicates_in", l.duplicates_in}, {"send_errors", l.send_errors}, {"dropped", l.dropped},
-                     {"deliveries", l.deliveries}, {"send_buffer_full", l.send_buffer_full}, {"kernel_rx_drops", l.kernel_rx_drops}});
+                     {"deliveries", l.deliveries}, {"send_buffer_full", l.send_buffer_full}, {"kernel_rx_drops", l.kernel_rx_drops},
+                     {"lossless", l.lossless}, {"dropped_by_message", l.dropped_by_message}});
   }
   j["links"] = links;
   return j;
@@ -80,9 +81,11 @@ std::string to_line(const bridge::BridgeHealth& h) {
   if (h.ignored_other_address) line += "  ignored (not the board) " + std::to_string(h.ignored_other_address);
   if (h.kernel_rx_drops) line += "  kernel rx drops " + std::to_string(h.kernel_rx_drops);
   for (const auto& l : h.links) {
-    if (l.name != "clients") continue;
-    if (l.dropped) line += "  clients dropped " + std::to_string(l.dropped);
-    if (l.send_errors) line += "  clients send errors " + std::to_string(l.send_errors);
+    if (l.name == "board") continue;
+    // The clients' queue drops its oldest; an endpoint, the frame that found its send buffer full.
+    const bool clients = l.name == "clients";
+    if (l.dropped) line += "  " + l.name + " dropped " + std::to_string(l.dropped) + (clients ? " (oldest first)" : "");
+    if (l.send_errors) line += "  " + l.name + " send errors " + std::to_string(l.send_errors);
   }
   return line;
 }
@@ -130,7 +133,7 @@ Status run_with_dashboard(const GlobalOptions& g, const bridge::BridgeConfig& co
 
 int run(const GlobalOptions& g, BridgeOptions& o) {
   for (const auto& text : o.endpoints) {
-    auto spec = net::parse_link_spec(text);
+    auto spec = net::parse_link_spec(text, {.lossless = true});
     if (!spec) {
       log_error("bridge", "--endpoint " + spec.error().message);
       return exit_code(spec.error());
@@ -204,8 +207,14 @@ void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   sub->add_option("--endpoint", o->endpoints,
                   "More links, as mavlink-router's: udp:HOST:PORT (QGroundControl: udp:127.0.0.1:14550), udpin:[HOST:]PORT, "
                   "tcp:HOST:PORT (reconnects every 2 s), tcpin:[HOST:]PORT (ground station tools connect, up to 16, "
-                  "as to mavlink-router's TCP port 5760); repeatable")
+                  "as to mavlink-router's TCP port 5760); a udp: or udpin: one may end in ?lossless (never dropped to: "
+                  "a recorder); repeatable")
       ->type_name("KIND:ADDRESS");
+  sub->add_option("--queue-ms", c.queue_ms,
+                  "Fresh under overload: the clients' queue holds this many ms of their sending time; beyond it the "
+                  "oldest frames are dropped (counted by link and message). An --endpoint ending in ?lossless "
+                  "(udp:HOST:PORT?lossless, a recorder) gets every frame taken in")
+      ->capture_default_str()->check(number_in(0.1, 10000.0));
   sub->add_option("--dedup", o->dedup_ms, "Drop a frame seen again within this many ms (arriving on two paths); 0: off")
       ->capture_default_str()->check(non_negative_number());
   sub->add_option("--duration", c.duration_s, "Seconds to run (0: until Ctrl-C)")->capture_default_str()->check(non_negative_number());

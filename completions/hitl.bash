@@ -48,7 +48,7 @@ _hitl_options() {
         'board stop') echo '-h --help --adb --adb-serial --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board status') echo '-h --help --adb --adb-serial --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --queue-ms --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
         'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
         'report') echo '-h --help -o --output --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -206,6 +206,7 @@ _hitl_value() {
         'bridge|--local-port') echo 'text' ;;
         'bridge|--clients') echo 'text' ;;
         'bridge|--endpoint') echo 'text' ;;
+        'bridge|--queue-ms') echo 'text' ;;
         'bridge|--dedup') echo 'text' ;;
         'bridge|--duration') echo 'text' ;;
         'bridge|--adb-serial') echo 'text' ;;

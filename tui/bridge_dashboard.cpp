@@ -159,8 +159,10 @@ DashboardModel BridgeDashboard::collect() {
       {"rx drops", count(h->kernel_rx_drops), h->kernel_rx_drops ? Health::Degraded : Health::Good},
       {"links", count(h->links.size())},
   };
-  for (const auto& l : h->links)  // what was taken in and lost towards the clients, counted where it happened
-    if (l.name == "clients" && l.dropped + l.send_errors > 0) m.link.push_back({"client drops", count(l.dropped + l.send_errors), Health::Bad});
+  for (const auto& l : h->links)  // what was taken in and lost towards the clients and endpoints, counted where it happened
+    if (l.name != "board" && l.dropped + l.send_errors > 0)
+      m.link.push_back({l.name == "clients" ? std::string("client drops") : "drops " + l.name, count(l.dropped + l.send_errors),
+                        l.lossless || l.send_errors > 0 ? Health::Bad : Health::Degraded});
   for (const auto& [source, l] : h->loss)
     m.link.push_back({"loss " + source, format("%.1f %%", l.loss_pct), l.loss_pct > 0 ? Health::Degraded : Health::Good});
   return m;

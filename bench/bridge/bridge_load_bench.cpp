@@ -6,9 +6,17 @@
 // latency p50/p99/max (board send to the kernel's arrival time at the client), the bridge's CPU. One JSON object per run on stdout, a table on stderr.
 //
 //   build/bench/bridge/bridge_load_bench [--hitl PATH] [--seconds S] [--clients 1,10,100] [--rates 0,1000]
+//                                        [--peer CMD] [--lossless] [--bridge-args "--queue-ms 500"]
 //
 // --rates: board frames per second, 0 = flat out. --hitl runs another build's binary (main's), so
-// the same command measures before and after. Bounded: each run lasts S seconds plus ~4 s.
+// the same command measures before and after. --peer CMD runs a mavlink-router beside it in the
+// same run, each load right after hitl's: CMD gets mavlink-routerd's arguments appended (`-t 0`,
+// `-e 127.0.0.1:PORT` per client, the board side `127.0.0.1:PORT` in server mode), e.g.
+// `--peer /root/peers/mavlink-router/build/src/mavlink-routerd`. --lossless adds one more
+// listener behind hitl's `--endpoint udp:127.0.0.1:PORT?lossless` and reports what it lost after
+// intake; --bridge-args adds options to `hitl bridge`. Both routers' intake is read the same way: the kernel's drop count of the socket on the
+// board side (/proc/net/udp), so "lost after intake" means the same for both. Bounded: each run
+// lasts S seconds plus ~4 s.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -104,7 +112,37 @@ struct Run {
   int clients = 1;
   double rate_hz = 0;  ///< 0: flat out
   double seconds = 3;
+  std::string peer;    ///< a mavlink-routerd command instead of hitl ("": hitl)
+  bool lossless = false;  ///< hitl: one more listener behind --endpoint udp:...?lossless
+  std::string hitl_args;  ///< more `hitl bridge` options (--bridge-args "--queue-ms 500")
 };
+
+/// The kernel's drop count of the UDP socket bound to `port` (any address), from /proc/net/udp.
+uint64_t proc_udp_drops(uint16_t port) {
+  std::ifstream f("/proc/net/udp");
+  std::string line;
+  std::getline(f, line);  // header
+  char want[8];
+  std::snprintf(want, sizeof want, ":%04X", port);
+  while (std::getline(f, line)) {
+    std::istringstream in(line);
+    std::string sl, local;
+    in >> sl >> local;
+    if (local.size() < 5 || local.substr(local.size() - 5) != want) continue;
+    std::string field, drops;
+    for (int i = 0; i < 10 && in >> field;) ++i;  // rem st tx:rx tr:when retrnsmt uid timeout inode ref pointer
+    in >> drops;
+    return drops.empty() ? 0 : std::stoull(drops);
+  }
+  return 0;
+}
+
+std::vector<std::string> split_words(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
 
 double percentile(std::vector<int64_t>& v, double p) {
   if (v.empty()) return 0;
@@ -130,26 +168,44 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
   const int board_fd = open_socket(0);
   const uint16_t board_port = port_of(board_fd);
   const uint16_t local_port = hitl::test::free_udp_port(), clients_port = hitl::test::free_udp_port();
-  hitl::test::Process bridge({hitl, "--json", "bridge", "-i", "127.0.0.1", "--port", std::to_string(board_port), "--local-port",
-                              std::to_string(local_port), "--clients", std::to_string(clients_port), "--duration",
-                              std::to_string(static_cast<int>(run.seconds) + 30)});
-  if (!bridge.wait_for_stderr("clients on", 10s)) {
+  const bool is_peer = !run.peer.empty();
+  std::vector<Client> clients(static_cast<std::size_t>(run.clients));
+  for (auto& c : clients) c.fd = open_socket(0);
+  Client recorder;  // --lossless: behind hitl's ?lossless endpoint
+  if (run.lossless && !is_peer) recorder.fd = open_socket(0);
+  std::vector<std::string> argv;
+  if (is_peer) {
+    argv = split_words(run.peer);
+    argv.insert(argv.end(), {"-t", "0"});
+    for (const auto& c : clients) argv.insert(argv.end(), {"-e", "127.0.0.1:" + std::to_string(port_of(c.fd))});
+    argv.push_back("127.0.0.1:" + std::to_string(local_port));
+  } else {
+    argv = {hitl, "--json", "bridge", "-i", "127.0.0.1", "--port", std::to_string(board_port), "--local-port",
+            std::to_string(local_port), "--clients", std::to_string(clients_port), "--duration",
+            std::to_string(static_cast<int>(run.seconds) + 30)};
+    if (recorder.fd >= 0) argv.insert(argv.end(), {"--endpoint", "udp:127.0.0.1:" + std::to_string(port_of(recorder.fd)) + "?lossless"});
+    for (const auto& w : split_words(run.hitl_args)) argv.push_back(w);
+  }
+  hitl::test::Process bridge(argv);
+  if (!is_peer && !bridge.wait_for_stderr("clients on", 10s)) {
     std::fprintf(stderr, "the bridge did not start: %s\n", bridge.err().c_str());
     std::exit(1);
   }
-  std::vector<Client> clients(static_cast<std::size_t>(run.clients));
+  if (is_peer) std::this_thread::sleep_for(500ms);  // mavlink-routerd says nothing when it is ready
   const int ep = ::epoll_create1(0);
   hitl::mavlink::FrameBuffer buf;
-  for (std::size_t i = 0; i < clients.size(); ++i) {
-    clients[i].fd = open_socket(0);
+  for (std::size_t i = 0; i <= clients.size(); ++i) {
+    if (i == clients.size() && recorder.fd < 0) break;
+    Client& c = i < clients.size() ? clients[i] : recorder;
     epoll_event ev{};
     ev.events = EPOLLIN;
     ev.data.u64 = i;
-    ::epoll_ctl(ep, EPOLL_CTL_ADD, clients[i].fd, &ev);
+    ::epoll_ctl(ep, EPOLL_CTL_ADD, c.fd, &ev);
+    if (is_peer || i == clients.size()) continue;  // mavlink-router sends to its -e endpoints unasked
     hitl::mavlink::FrameEncoder enc(200, static_cast<uint8_t>(1 + i));
     const std::size_t n = enc.encode(msg::Heartbeat{}, buf);
     const auto to = loopback_address(clients_port);
-    ::sendto(clients[i].fd, buf.data(), n, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+    ::sendto(c.fd, buf.data(), n, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
   }
   std::this_thread::sleep_for(500ms);  // every client known to the bridge before the stream
 
@@ -166,7 +222,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
     int64_t idle_since = now_ns(), next_heartbeat = now_ns();
     const auto clients_at = loopback_address(clients_port);
     for (;;) {
-      if (now_ns() >= next_heartbeat) {  // clients say they are there, as MAVLink clients do (the bridge forgets one after 10 s)
+      if (!is_peer && now_ns() >= next_heartbeat) {  // clients say they are there, as MAVLink clients do (the bridge forgets one after 10 s)
         next_heartbeat += 2'000'000'000;
         hitl::mavlink::FrameBuffer hb;
         for (std::size_t i = 0; i < clients.size(); ++i) {
@@ -183,7 +239,9 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
       if (!sending && now_ns() - stop_ns > 30'000'000'000) return;  // bounded, however slow the drain
       idle_since = now_ns();
       for (int e = 0; e < n; ++e) {
-        Client& c = clients[events[e].data.u64];
+        const auto which = events[e].data.u64;
+        Client& c = which < clients.size() ? clients[which] : recorder;
+        const bool timed = which < clients.size();  // the recorder's copies are counted, not timed
         for (;;) {
           iovec iov{data, sizeof data};
           msghdr m{};
@@ -209,7 +267,7 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
           uint32_t index = 0;
           std::memcpy(&index, data + 10, sizeof index);  // time_boot_ms / the low half of time_usec
           ++c.received;
-          if (index < capacity && sent_at[index] != 0 && latencies_ns.size() < latencies_ns.capacity())
+          if (timed && index < capacity && sent_at[index] != 0 && latencies_ns.size() < latencies_ns.capacity())
             latencies_ns.push_back(arrived_ns - sent_at[index]);
         }
       }
@@ -262,13 +320,17 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
   const double drain_s = wall_s - send_s;
   std::this_thread::sleep_for(1200ms);  // one more health report after the drain
   const auto status = last_of(bridge.out_lines(), "status");
+  const uint64_t kernel_drops_board_side = proc_udp_drops(local_port);  // before it closes
   bridge.signal(SIGINT);
   bridge.wait(10s);
 
   nlohmann::json links = status.value("links", nlohmann::json::array());
   nlohmann::json board_link = links.size() > 0 ? links[0] : nlohmann::json::object();
   nlohmann::json clients_link = links.size() > 1 ? links[1] : nlohmann::json::object();
-  const uint64_t taken_in = field_or(board_link, "packets_in");
+  // Taken in: what the board side's socket did not drop (the same measure for hitl and the peer;
+  // hitl's own count is hitl_taken_in).
+  const uint64_t taken_in = sent - std::min(sent, kernel_drops_board_side);
+  const uint64_t hitl_taken_in = field_or(board_link, "packets_in");
   uint64_t min_rx = UINT64_MAX, max_rx = 0, sum_rx = 0, client_kernel = 0;
   for (const auto& c : clients) {
     min_rx = std::min(min_rx, c.received);
@@ -277,12 +339,25 @@ nlohmann::json run_once(const std::string& hitl, const Run& run) {
     client_kernel += c.kernel_drops;
     ::close(c.fd);
   }
+  const uint64_t recorder_lost = recorder.fd >= 0 ? taken_in - std::min(taken_in, recorder.received + recorder.kernel_drops) : 0;
+  if (recorder.fd >= 0) ::close(recorder.fd);
   ::close(ep);
   ::close(board_fd);
   const double n_clients = static_cast<double>(clients.size());
   const uint64_t lost_after = taken_in * clients.size() - std::min(taken_in * clients.size(), sum_rx);
   const uint64_t bridge_counted = field_or(clients_link, "dropped") + field_or(clients_link, "send_errors");
+  uint64_t drops_reported = 0;  // what the router said it dropped: before intake and after
+  if (!is_peer) {
+    drops_reported = field_or(status, "kernel_rx_drops");
+    for (const auto& l : links) drops_reported += field_or(l, "dropped") + (l.value("name", "") == "board" ? 0 : field_or(l, "kernel_rx_drops"));
+  }
   nlohmann::json j = {
+      {"router", is_peer ? "peer: " + run.peer : "hitl"},
+      {"kernel_drops_board_side", kernel_drops_board_side},
+      {"drops_reported", is_peer ? nlohmann::json(nullptr) : nlohmann::json(drops_reported)},
+      {"lossless_lost_after", recorder.fd >= 0 ? nlohmann::json(recorder_lost) : nlohmann::json(nullptr)},
+      {"lossless_received", recorder.fd >= 0 ? nlohmann::json(recorder.received) : nlohmann::json(nullptr)},
+      {"hitl_taken_in", hitl_taken_in},
       {"clients", run.clients},
       {"board_rate_hz", run.rate_hz > 0 ? nlohmann::json(run.rate_hz) : nlohmann::json("flat out")},
       {"seconds", send_s},
@@ -318,37 +393,59 @@ std::vector<double> list_of(const char* text) {
 
 }  // namespace
 
+std::string us_text(double us) {
+  char text[32];
+  if (us >= 1e6) std::snprintf(text, sizeof text, "%.2f s", us / 1e6);
+  else if (us >= 1e3) std::snprintf(text, sizeof text, "%.1f ms", us / 1e3);
+  else std::snprintf(text, sizeof text, "%.0f us", us);
+  return text;
+}
+
+void print_row(const nlohmann::json& j, double rate) {
+  const bool peer = j["router"] != "hitl";
+  const auto u = [](const nlohmann::json& v) { return static_cast<unsigned long long>(v.is_number() ? v.get<uint64_t>() : 0); };
+  std::string lossless = j["lossless_lost_after"].is_null() ? "" : " (lossless " + std::to_string(u(j["lossless_lost_after"])) + ")";
+  std::string reported = peer ? "not reported" : std::to_string(u(j["drops_reported"]));
+  std::fprintf(stderr, "| %s | %s | %d | %llu | %llu | %.0f/s | %llu%s | %llu | %s | %s / %s | %.0f %% |\n",
+               peer ? "mavlink-router" : "hitl", rate > 0 ? (std::to_string(static_cast<int>(rate)) + "/s").c_str() : "flat out",
+               j["clients"].get<int>(), u(j["board_sent"]), u(j["bridge_taken_in"]), j["per_client_rate_hz"].get<double>(),
+               u(j["lost_after_bridge"]) - std::min(u(j["lost_after_bridge"]), u(j["lost_in_client_sockets"])), lossless.c_str(),
+               u(j["kernel_drops_board_side"]), reported.c_str(), us_text(j["latency_us"]["p50"].get<double>()).c_str(),
+               us_text(j["latency_us"]["p99"].get<double>()).c_str(), j["bridge_cpu_pct"].get<double>());
+}
+
 int main(int argc, char** argv) {
-  std::string hitl = hitl::test::hitl_binary();
+  std::string hitl = hitl::test::hitl_binary(), peer, bridge_args;
   double seconds = 3;
+  bool lossless = false;
   std::vector<double> clients = {1, 10, 100}, rates = {0, 1000};
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--hitl") hitl = argv[i + 1];
-    else if (a == "--seconds") seconds = std::atof(argv[i + 1]);
-    else if (a == "--clients") clients = list_of(argv[i + 1]);
-    else if (a == "--rates") rates = list_of(argv[i + 1]);
+    const bool has_value = i + 1 < argc;
+    if (a == "--lossless") lossless = true;
+    else if (a == "--hitl" && has_value) hitl = argv[++i];
+    else if (a == "--peer" && has_value) peer = argv[++i];
+    else if (a == "--bridge-args" && has_value) bridge_args = argv[++i];
+    else if (a == "--seconds" && has_value) seconds = std::atof(argv[++i]);
+    else if (a == "--clients" && has_value) clients = list_of(argv[++i]);
+    else if (a == "--rates" && has_value) rates = list_of(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: %s [--hitl PATH] [--seconds S] [--clients 1,10,100] [--rates 0,1000]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--hitl PATH] [--seconds S] [--clients 1,10,100] [--rates 0,1000] [--peer CMD] [--lossless] [--bridge-args \"--queue-ms 500\"]\n", argv[0]);
       return 2;
     }
   }
   std::signal(SIGPIPE, SIG_IGN);
-  std::fprintf(stderr, "| board rate | clients | sent | taken in | lost before | kernel drops (bridge) | per-client rate | lost after | counted by bridge | in client sockets | unexplained | p50 / p99 / max us | bridge CPU |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::fprintf(stderr,
+               "| router | board rate | clients | sent | taken in | per-client rate | lost after intake | kernel drops (board side) | drops reported | p50 / p99 latency | CPU |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const double rate : rates) {
     for (const double n : clients) {
-      const auto j = run_once(hitl, Run{static_cast<int>(n), rate, seconds});
-      std::printf("%s\n", j.dump().c_str());
-      std::fflush(stdout);
-      std::fprintf(stderr, "| %s | %d | %llu | %llu | %llu | %s | %.0f/s | %llu (%.3f %%) | %llu | %llu | %llu | %.0f / %.0f / %.0f | %.0f %% |\n",
-                   rate > 0 ? (std::to_string(static_cast<int>(rate)) + "/s").c_str() : "flat out", static_cast<int>(n),
-                   j["board_sent"].get<unsigned long long>(), j["bridge_taken_in"].get<unsigned long long>(),
-                   j["lost_before_bridge"].get<unsigned long long>(), j["bridge_kernel_rx_drops"].dump().c_str(),
-                   j["per_client_rate_hz"].get<double>(), j["lost_after_bridge"].get<unsigned long long>(),
-                   j["lost_after_bridge_pct"].get<double>(), j["lost_after_counted_by_bridge"].get<unsigned long long>(),
-                   j["lost_in_client_sockets"].get<unsigned long long>(), j["lost_after_unexplained"].get<unsigned long long>(),
-                   j["latency_us"]["p50"].get<double>(), j["latency_us"]["p99"].get<double>(), j["latency_us"]["max"].get<double>(),
-                   j["bridge_cpu_pct"].get<double>());
+      for (int router = 0; router < (peer.empty() ? 1 : 2); ++router) {
+        const auto j = run_once(hitl, Run{static_cast<int>(n), rate, seconds, router == 0 ? std::string{} : peer, lossless && router == 0, bridge_args});
+        std::printf("%s\n", j.dump().c_str());
+        std::fflush(stdout);
+        print_row(j, rate);
+      }
     }
   }
   return 0;

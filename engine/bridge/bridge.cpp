@@ -3,6 +3,7 @@
 #include <poll.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <deque>
 #include <memory>
@@ -30,17 +31,27 @@ constexpr std::size_t kMaxTcpClients = 16;  ///< per --endpoint tcpin: (ground s
 constexpr std::size_t kTimesyncRemembered = 8;
 constexpr std::size_t kMaxClientDatagramsPerDrain = 64;
 constexpr std::size_t kMaxDatagramsPerDrain = 256;  ///< per link and wake-up: a flood cannot hold the loop
-/// The board is read only while the clients' queue has room for this many more frames (a
-/// datagram's worth), so what is taken in is sent, and a board faster than the clients waits in
-/// the kernel's receive buffer, whose overflow is counted there (kernel_rx_drops).
+/// The board is read only while every ?lossless endpoint's queue has room for this many more
+/// frames (a datagram's worth): what is taken in reaches it, and a board faster than it waits in
+/// the kernel's receive buffer (sized to --queue-ms), whose overflow is counted (kernel_rx_drops).
 constexpr std::size_t kRoomForADatagram = 128;
-constexpr int kBoardReceiveBuffer_bytes = 1 << 20;  ///< as before: a larger one only adds latency under overload
-/// The client port sized for a 100-client fan-out of a flat-out board stream.
+/// The client port sized for a 100-client fan-out of a flat-out board stream; its queue is fresh
+/// (max_queue_s from --queue-ms). A pump sends at most 1,024 datagrams (~3 ms), so the board is
+/// read often enough that its socket holds no old backlog.
 constexpr net::ClientPortLimits kClientLimits{.max_clients = 128,
-                                              .max_datagrams_out = 4096,
+                                              .max_datagrams_out = 1024,
                                               .max_queued_frames = 2048,
                                               .send_buffer_bytes = 4 << 20,
-                                              .receive_buffer_bytes = 1 << 20};
+                                              .receive_buffer_bytes = 1 << 20,
+                                              .max_queue_s = 0,
+                                              .min_queued_frames = kMinClientQueueFrames};
+constexpr double kDefaultDatagramTruesize_bytes = 1024;  ///< the kernel's cost of one small datagram, until measured
+
+std::string format_ms(double ms) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g ms", ms);
+  return text;
+}
 
 std::string source_key(uint8_t sysid, uint8_t compid) { return std::to_string(sysid) + "/" + std::to_string(compid); }
 
@@ -48,6 +59,11 @@ std::string source_key(uint8_t sysid, uint8_t compid) { return std::to_string(sy
 struct Endpoint {
   net::LinkSpec spec;
   std::unique_ptr<net::Link> link;
+  net::UdpLink* udp = nullptr;  ///< the same link when it is UDP (udp:, udpin:)
+  /// ?lossless: frames that found the send buffer full, sent in order once it is writable.
+  std::deque<std::vector<uint8_t>> waiting;
+  uint64_t dropped = 0, send_buffer_full = 0;
+  std::map<uint32_t, uint64_t> dropped_by_msgid;
   std::unique_ptr<mavlink::FrameParser> parser;
   uint64_t parser_connects = 0;  ///< a TCP reconnect starts a fresh parser
   router::LinkId route = 0;
@@ -82,15 +98,18 @@ class Bridge {
     c.endpoint.policy = net::PartnerPolicy::Fixed;
     c.endpoint.name = "the board link's local port (--local-port)";
     c.hear_peer_only = true;  // the board answers from its own port; anyone else is not the board
-    c.endpoint.receive_buffer_bytes = kBoardReceiveBuffer_bytes;
+    c.endpoint.receive_buffer_bytes = board_buffer_asked_ = kBoardReceiveMin_bytes;  // grows with the stream (size_board_buffer)
     auto ep = net::UdpLink::open(c);
     if (!ep) return ep.error().suffixed(" (a hitl sim, another hitl bridge or a direct command owns it?)");
     board_buffers_ = ep.value()->buffer_sizes();
+    board_udp_ = ep.value().get();
     board_ = std::move(ep.value());
     board_link_ = router_.add_link("board", [this](std::span<const uint8_t> bytes, const auto&) { (void)board_->send(bytes); });
 
     if (config_.clients_port != 0) {
-      auto cp = net::ClientPort::open(config_.clients_bind, config_.clients_port, {}, kClientLimits);
+      net::ClientPortLimits limits = kClientLimits;
+      limits.max_queue_s = config_.queue_ms / 1000.0;
+      auto cp = net::ClientPort::open(config_.clients_bind, config_.clients_port, {}, limits);
       if (!cp) return cp.error().suffixed(" (is a hitl sim or another hitl bridge running? --clients 0 disables)");
       clients_.emplace(std::move(cp.value()));
       clients_link_ = router_.add_link(
@@ -106,14 +125,12 @@ class Bridge {
       auto link = open_endpoint_link(spec);
       if (!link) return link.error();
       e->link = std::move(link.value());
-      net::Link* raw = e->link.get();
+      e->udp = dynamic_cast<net::UdpLink*>(e->link.get());
+      Endpoint* raw = e.get();
       e->route = router_.add_link(
           spec.text,
-          [raw](std::span<const uint8_t> bytes, const router::Delivery& to) {
-            // udpin: nobody to answer until someone spoke; tcp, tcpin: nothing while disconnected
-            if (raw->connected() && raw->peer()) (void)raw->send_to_peers(bytes, to.except, to.only);
-          },
-          /*hub=*/raw->hub());
+          [this, raw](std::span<const uint8_t> bytes, const router::Delivery& to) { send_to_endpoint(*raw, bytes, to); },
+          /*hub=*/raw->link->hub());
       endpoints_.push_back(std::move(e));
     }
     return Ok{};
@@ -134,7 +151,8 @@ class Bridge {
       if (got < 2 * asked) text += " (asked " + std::to_string(asked) + " B; " + cap + " caps it)";
       return text;
     };
-    std::string out = "socket buffers granted: board receive " + granted(kBoardReceiveBuffer_bytes, board_buffers_.receive_bytes, "net.core.rmem_max");
+    std::string out = "socket buffers granted: board receive " + granted(board_buffer_asked_, board_buffers_.receive_bytes, "net.core.rmem_max") +
+                      " (then sized to " + format_ms(kBoardBuffer_ms) + " of the board's stream)";
     if (clients_) {
       const auto b = clients_->buffer_sizes();
       out += ", clients send " + granted(kClientLimits.send_buffer_bytes, b.send_bytes, "net.core.wmem_max") + ", clients receive " +
@@ -147,6 +165,7 @@ class Bridge {
     observer_.on_event(describe_buffers(), Severity::Info);
     start_s_ = monotonic_s();
     next_tick_s_ = start_s_;
+    last_sized_s_ = start_s_;
     while (!stop.load()) {
       const double now = monotonic_s();
       if (config_.duration_s > 0 && now - start_s_ >= config_.duration_s) break;
@@ -158,8 +177,10 @@ class Bridge {
       for (auto& e : endpoints_) e->link->maintain(now);
       say_link_events();
       wait_readable(std::min(50.0, (next_tick_s_ - monotonic_s()) * 1000.0));
+      send_waiting();
       drain(monotonic_s());
       if (clients_) clients_->pump();
+      send_waiting();
       watch_board(monotonic_s());
     }
     return Ok{};
@@ -168,21 +189,47 @@ class Bridge {
  private:
   void wait_readable(double timeout_ms) {
     std::vector<pollfd> fds;
-    // A board faster than the clients waits in its socket while their queue is full.
-    if (!clients_ || clients_->own_room() >= kRoomForADatagram) fds.push_back({board_->fd(), POLLIN, 0});
+    // A board faster than a ?lossless endpoint waits in its socket while that endpoint's queue is full.
+    if (lossless_room()) fds.push_back({board_->fd(), POLLIN, 0});
     if (clients_) fds.push_back({clients_->fd(), static_cast<short>(POLLIN | (clients_->wants_writable() ? POLLOUT : 0)), 0});
     for (const auto& e : endpoints_)
-      if (e->link->fd() >= 0) fds.push_back({e->link->fd(), POLLIN, 0});
+      if (e->link->fd() >= 0) fds.push_back({e->link->fd(), static_cast<short>(POLLIN | (e->waiting.empty() ? 0 : POLLOUT)), 0});
     int ms = std::max(0, static_cast<int>(timeout_ms));
     // The client port's send bound left some for later: go on at once (unless its buffer is full).
     if (clients_ && clients_->queued_frames() > 0 && !clients_->wants_writable()) ms = 0;
     (void)::poll(fds.data(), fds.size(), ms);
   }
 
+  /// Room in every ?lossless endpoint's queue for another datagram's frames (true without any).
+  bool lossless_room() const {
+    return std::all_of(endpoints_.begin(), endpoints_.end(),
+                       [](const auto& e) { return e->waiting.size() + kRoomForADatagram <= kMaxLosslessQueueFrames; });
+  }
+
+  /// Board datagrams read per loop turn: four times what a turn sends to the clients (the newest
+  /// are taken in and the oldest dropped, without reading a hundred frames for each one a
+  /// 100-client fan-out can send), at least 32, at most kMaxDatagramsPerDrain.
+  std::size_t board_reads_per_turn() const {
+    if (!clients_ || clients_->client_count() == 0) return kMaxDatagramsPerDrain;
+    const std::size_t per_turn = 4 * kClientLimits.max_datagrams_out / clients_->client_count();
+    return std::clamp<std::size_t>(per_turn, 32, kMaxDatagramsPerDrain);
+  }
+
   void drain(double now) {
-    for (std::size_t reads = 0; reads < kMaxDatagramsPerDrain; ++reads) {
-      if (clients_ && clients_->own_room() < kRoomForADatagram) break;  // sent first, then taken in
+    // The board is read as fast as it sends (what is too old is dropped in the clients' queue,
+    // oldest first, and counted by message); its socket's backlog is what the loop left unread.
+    const std::size_t waiting_bytes = board_udp_->receive_queue_bytes();
+    const std::size_t max_reads = board_reads_per_turn();
+    std::size_t reads = 0;
+    for (; reads < max_reads; ++reads) {
+      if (!lossless_room()) break;  // sent first, then taken in
       if (board_->drain(board_parser_, [&](const mavlink::Frame& f) { on_board_frame(f, now); }, 1) == 0) break;
+    }
+    board_reads_ += reads;
+    // Emptied: what the socket held per datagram (the kernel's cost, to size its buffer in time).
+    if (reads > 0 && reads < max_reads && waiting_bytes > 0) {
+      const double per = static_cast<double>(waiting_bytes) / static_cast<double>(reads);
+      datagram_truesize_ = datagram_truesize_ <= 0 ? per : 0.9 * datagram_truesize_ + 0.1 * per;
     }
     if (clients_) {
       clients_->receive_some(kMaxClientDatagramsPerDrain, [&](const net::Datagram& d) {
@@ -199,6 +246,76 @@ class Bridge {
           kMaxDatagramsPerDrain);
     }
     say_link_events();
+  }
+
+  /// One frame to an --endpoint. udpin: nobody to answer until someone spoke; tcp: nothing while
+  /// disconnected. A full send buffer: a ?lossless endpoint keeps the frame (and the board waits
+  /// in its socket once the queue is full); a fresh one drops it, counted by message.
+  void send_to_endpoint(Endpoint& e, std::span<const uint8_t> bytes, const router::Delivery& to) {
+    // udpin: nobody to answer until someone spoke; tcp, tcpin: nothing while disconnected
+    if (!e.link->connected() || !e.link->peer()) return;
+    if (e.udp == nullptr) {  // a stream: the link queues what the reader has not taken (tcpin: each client's)
+      (void)e.link->send_to_peers(bytes, to.except, to.only);
+      return;
+    }
+    if (e.spec.lossless && !e.waiting.empty()) {
+      if (e.waiting.size() < kMaxLosslessQueueFrames) e.waiting.emplace_back(bytes.begin(), bytes.end());
+      else count_drop(e, bytes);  // only frames from clients and endpoints, which are not held back, can get here
+      return;
+    }
+    if (e.udp->try_send(bytes) != net::SendOutcome::WouldBlock) return;  // a refusal is counted in send_errors
+    ++e.send_buffer_full;
+    if (e.spec.lossless) e.waiting.emplace_back(bytes.begin(), bytes.end());
+    else count_drop(e, bytes);
+  }
+
+  void count_drop(Endpoint& e, std::span<const uint8_t> bytes) {
+    ++e.dropped;
+    uint32_t id = bytes.size() >= 10 && bytes[0] == 0xFD ? (uint32_t{bytes[7]} | uint32_t{bytes[8]} << 8 | uint32_t{bytes[9]} << 16)
+                  : bytes.size() >= 6 && bytes[0] == 0xFE ? bytes[5] : net::ClientPort::kOtherIds;
+    if (!e.dropped_by_msgid.contains(id) && e.dropped_by_msgid.size() >= net::ClientPort::kMaxDropIds) id = net::ClientPort::kOtherIds;
+    ++e.dropped_by_msgid[id];
+  }
+
+  /// ?lossless endpoints: what waited for the send buffer, in order, until it is full again.
+  void send_waiting() {
+    for (auto& e : endpoints_) {
+      while (!e->waiting.empty() && e->udp != nullptr) {
+        const auto sent = e->udp->try_send(e->waiting.front());
+        if (sent == net::SendOutcome::WouldBlock) {
+          ++e->send_buffer_full;
+          break;
+        }
+        e->waiting.pop_front();
+      }
+    }
+  }
+
+  /// The board socket's receive buffer holds kBoardBuffer_ms of the board's stream as it arrived
+  /// in the last period (read or dropped by the kernel) (the kernel doubles what it is asked for): under overload the kernel drops the
+  /// rest (counted) instead of keeping seconds of backlog; at a board's usual rates the minimum holds.
+  void size_board_buffer(double now) {
+    const double period_s = now - last_sized_s_;
+    if (period_s <= 0) return;
+    // The board's stream: what was read and what the kernel dropped (sized by what was read
+    // alone, a buffer that overflows would shrink itself further).
+    const uint64_t arrived = board_reads_ + board_->stats().kernel_rx_drops;
+    const double rate_hz = static_cast<double>(arrived - arrived_at_last_size_) / period_s;
+    last_sized_s_ = now;
+    arrived_at_last_size_ = arrived;
+    const double truesize = datagram_truesize_ > 0 ? datagram_truesize_ : kDefaultDatagramTruesize_bytes;
+    const double want = rate_hz * truesize * kBoardBuffer_ms / 1000.0 / 2.0;
+    const int asked = static_cast<int>(std::clamp(want, static_cast<double>(kBoardReceiveMin_bytes), static_cast<double>(kBoardReceiveMax_bytes)));
+    if (std::abs(asked - board_buffer_asked_) * 5 < board_buffer_asked_) return;  // within 20 %: leave it
+    board_buffer_asked_ = asked;
+    board_udp_->set_receive_buffer(asked);
+    board_buffers_ = board_udp_->buffer_sizes();
+  }
+
+  std::string message_name(uint32_t id) const {
+    if (id == net::ClientPort::kOtherIds) return "other";
+    const auto* d = messages_.find(id);
+    return d != nullptr ? d->name : std::to_string(id);
   }
 
   /// What the --endpoint links said (TCP connected, lost, retrying).
@@ -272,6 +389,13 @@ class Bridge {
   }
 
   void tick(double now) {
+    // The kernel's drops read now, not only with the next datagram: a flood that ends the stream
+    // leaves nothing after it to carry the count.
+    board_udp_->poll_kernel_drops();
+    if (clients_) clients_->poll_kernel_drops();
+    for (auto& e : endpoints_)
+      if (e->udp != nullptr) e->udp->poll_kernel_drops();
+    size_board_buffer(now);
     // Our HEARTBEAT (an onboard component, not a ground station: PX4's GCS-loss logic must not
     // count the bridge) makes a fresh PX4 instance take this port as its partner.
     send_own(board_link_, mavlink::onboard_heartbeat());
@@ -320,7 +444,8 @@ class Bridge {
       auto l = link_health(clients_link_, clients_->local_address()->to_string(), h.clients > 0);
       const auto& s = clients_->stats();
       l.deliveries = s.datagrams_out;
-      l.dropped = s.dropped_frames;
+      l.dropped = s.dropped_deliveries;
+      for (const auto& [id, n] : s.dropped_by_msgid) l.dropped_by_message[message_name(id)] += n;
       l.send_errors = s.send_errors;
       l.send_buffer_full = s.send_buffer_full;
       l.kernel_rx_drops = clients_->kernel_rx_drops();
@@ -329,12 +454,18 @@ class Bridge {
     uint64_t ignored = board_->stats().ignored_other_address;
     for (const auto& e : endpoints_) {
       const auto peer = e->link->peer();
-      h.links.push_back(link_health(e->route, peer ? peer->to_string() : std::string{}, e->link->connected() && peer.has_value(),
-                                    e->link.get()));
+      auto l = link_health(e->route, peer ? peer->to_string() : std::string{}, e->link->connected() && peer.has_value(), e->link.get());
+      l.lossless = e->spec.lossless;
+      l.dropped = e->dropped;
+      l.packets_out -= std::min<uint64_t>(l.packets_out, e->dropped + e->waiting.size());  // routed there but not (yet) sent
+      l.send_buffer_full = e->send_buffer_full;
+      for (const auto& [id, n] : e->dropped_by_msgid) l.dropped_by_message[message_name(id)] += n;
+      h.links.push_back(std::move(l));
       ignored += e->link->stats().ignored_other_address;
     }
     h.duplicates = router_.duplicates();
     h.kernel_rx_drops = board_->stats().kernel_rx_drops;
+    h.board_receive_buffer_bytes = board_buffers_.receive_bytes;
     h.ignored_other_address = ignored;
     h.untracked_frames = untracked_frames_;
     return h;
@@ -349,7 +480,11 @@ class Bridge {
   mavlink::FrameEncoder own_;
   std::optional<net::SocketAddress> board_address_;
   std::unique_ptr<net::Link> board_;
+  net::UdpLink* board_udp_ = nullptr;  ///< the same link: its socket's buffer and drop count
   net::UdpEndpoint::BufferSizes board_buffers_;
+  int board_buffer_asked_ = 0;
+  uint64_t board_reads_ = 0, arrived_at_last_size_ = 0;
+  double last_sized_s_ = 0, datagram_truesize_ = 0;
   std::optional<net::ClientPort> clients_;
   std::vector<std::unique_ptr<Endpoint>> endpoints_;
   router::LinkId board_link_ = 0, clients_link_ = 0;

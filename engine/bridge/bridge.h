@@ -41,7 +41,19 @@ struct BridgeConfig {
   double dedup_window_s = 0.1;             ///< --dedup (0: off)
   double duration_s = 0;                   ///< --duration (0: until stopped)
   double health_period_s = 1.0;
+  /// --queue-ms: the most the clients' queue holds back under overload, in milliseconds of their
+  /// measured sending time (at least kMinClientQueueFrames, and at least what one loop turn sends);
+  /// beyond it the oldest frames are dropped and counted. The board socket's receive buffer holds
+  /// kBoardBuffer_ms of the board's measured stream (within kBoardReceiveMin/Max_bytes).
+  /// `?lossless` endpoints are never dropped to (the board waits in its socket for them instead).
+  double queue_ms = 20;
 };
+
+inline constexpr double kBoardBuffer_ms = 2;              ///< of the board's stream, as read: the board is read as fast as it sends
+inline constexpr int kBoardReceiveMin_bytes = 64 << 10;   ///< asked for at least (the kernel doubles it: ~157 small datagrams on loopback, 157 ms at 1,000/s)
+inline constexpr int kBoardReceiveMax_bytes = 1 << 20;    ///< asked for at most
+inline constexpr std::size_t kMinClientQueueFrames = 32;  ///< the clients' queue never holds fewer (a stall of the loop is not overload)
+inline constexpr std::size_t kMaxLosslessQueueFrames = 4096;  ///< a ?lossless endpoint's frames waiting for its send buffer
 
 struct SourceLoss {
   uint64_t received = 0;
@@ -59,6 +71,9 @@ struct LinkHealth {
   uint64_t deliveries = 0;   ///< clients: datagrams sent, one per frame and client
   uint64_t send_buffer_full = 0;  ///< clients: sends that found the socket buffer full and waited (not lost)
   uint64_t kernel_rx_drops = 0;   ///< datagrams the kernel dropped before the bridge read them (receive buffer full)
+  bool lossless = false;          ///< a ?lossless endpoint: never dropped to
+  /// `dropped` by message name ("ATTITUDE"; an id without a name by its number; "other" beyond 64 ids)
+  std::map<std::string, uint64_t> dropped_by_message;
 };
 
 struct BridgeHealth {
@@ -72,7 +87,8 @@ struct BridgeHealth {
   uint64_t duplicates = 0;
   uint64_t ignored_other_address = 0;  ///< datagrams on the board link not from the board, or on a udp: endpoint not from its peer
   uint64_t untracked_frames = 0;       ///< board frames from sources beyond kMaxLossSources (not in `loss`)
-  uint64_t kernel_rx_drops = 0;        ///< board datagrams the kernel dropped before the bridge read them (SO_RXQ_OVFL)
+  uint64_t kernel_rx_drops = 0;        ///< board datagrams the kernel dropped before the bridge read them (SO_RXQ_OVFL / SO_MEMINFO, read each report)
+  int board_receive_buffer_bytes = 0;  ///< granted now (sized to --queue-ms of the board's stream)
 };
 
 class BridgeObserver {

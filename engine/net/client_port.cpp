@@ -54,11 +54,58 @@ std::size_t ClientPort::receive_some(std::size_t max_datagrams, const std::funct
   return read;
 }
 
+namespace {
+
+/// The MAVLink message id of a frame (v2 or v1), or ClientPort::kOtherIds when it has none.
+uint32_t message_id(std::span<const uint8_t> f) {
+  if (f.size() >= 10 && f[0] == 0xFD) return uint32_t{f[7]} | uint32_t{f[8]} << 8 | uint32_t{f[9]} << 16;
+  if (f.size() >= 6 && f[0] == 0xFE) return f[5];
+  return ClientPort::kOtherIds;
+}
+
+}  // namespace
+
+std::size_t ClientPort::queue_limit() const {
+  if (limits_.max_queue_s <= 0) return limits_.max_queued_frames;
+  const double per_datagram_s = send_s_per_datagram_ > 0 ? send_s_per_datagram_ : kAssumedSendTime_s;
+  const double per_frame_s = per_datagram_s * static_cast<double>(std::max<std::size_t>(1, clients_.size()));
+  const auto frames = static_cast<std::size_t>(limits_.max_queue_s / per_frame_s);
+  // Never fewer than one pump() sends to every client: what one loop turn takes in is sent, not dropped.
+  const std::size_t floor = std::max(limits_.min_queued_frames, limits_.max_datagrams_out / std::max<std::size_t>(1, clients_.size()));
+  return std::clamp(frames, std::min(floor, limits_.max_queued_frames), limits_.max_queued_frames);
+}
+
+void ClientPort::drop_oldest(Queue& queue) {
+  const Frame& f = queue.frames.front();
+  uint64_t not_reached = 0;
+  for (std::size_t i = queue.next_client; i < clients_.size(); ++i) {
+    const Client& c = clients_[i];
+    if ((f.except && c.address == *f.except) ||
+        (!f.only.empty() && std::find(f.only.begin(), f.only.end(), c.address) == f.only.end()))
+      continue;
+    ++not_reached;
+  }
+  ++stats_.dropped_frames;
+  stats_.dropped_deliveries += not_reached;
+  uint32_t id = message_id({f.bytes.data(), f.size});
+  if (!stats_.dropped_by_msgid.contains(id) && stats_.dropped_by_msgid.size() >= kMaxDropIds) id = kOtherIds;
+  stats_.dropped_by_msgid[id] += not_reached;
+  queue.frames.pop_front();
+  queue.next_client = 0;
+}
+
 void ClientPort::broadcast(std::span<const uint8_t> bytes, const std::optional<SocketAddress>& except,
                            const std::vector<SocketAddress>& only) {
   if (!endpoint_ || clients_.empty()) return;
   Queue& queue = except ? forwarded_ : own_;
-  if (queue.frames.size() >= limits_.max_queued_frames || bytes.size() > kMaxFrameBytes) {
+  if (bytes.size() > kMaxFrameBytes) {
+    ++stats_.dropped_frames;
+    return;
+  }
+  if (limits_.max_queue_s > 0) {  // fresh: the newest goes in, the oldest make room
+    const std::size_t limit = std::max<std::size_t>(1, queue_limit());
+    while (queue.frames.size() >= limit) drop_oldest(queue);
+  } else if (queue.frames.size() >= limits_.max_queued_frames) {
     ++stats_.dropped_frames;
     return;
   }
@@ -112,8 +159,15 @@ void ClientPort::pump() {
   forget_silent_clients();
   blocked_ = false;
   std::size_t budget = limits_.max_datagrams_out;
+  const auto start = std::chrono::steady_clock::now();
   send_from(own_, budget);
   send_from(forwarded_, budget);
+  // The time a datagram takes to send, measured over enough of them to mean something: it sizes
+  // the fresh queue in sending time (queue_limit()).
+  if (const std::size_t sent = limits_.max_datagrams_out - budget; sent >= 64) {
+    const double per = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / static_cast<double>(sent);
+    send_s_per_datagram_ = send_s_per_datagram_ <= 0 ? per : 0.8 * send_s_per_datagram_ + 0.2 * per;
+  }
 }
 
 std::vector<SocketAddress> ClientPort::clients() const {

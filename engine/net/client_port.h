@@ -12,6 +12,11 @@
 //   frames from the board and the owner's own first, then client-to-client ones; each of the two
 //   queues holds at most `max_queued_frames` frames, and a frame that finds its queue full is
 //   dropped and counted (`dropped_frames`);
+// - fresh queues (limits.max_queue_s > 0, the bridge): the board's queue holds at most that much
+//   sending time, measured (seconds per datagram sent, times the clients), so under overload a
+//   client gets frames at most ~max_queue_s old; a frame that finds it full drops the OLDEST frame
+//   (the newest ATTITUDE is what a flight link wants), counted per client it did not reach
+//   (`dropped_deliveries`) and per MAVLink message id (`dropped_by_msgid`);
 // - a send that finds the socket's buffer full (EAGAIN, ENOBUFS) is not lost: pump() stops there
 //   and carries on with the same client when the socket is writable (wants_writable(): poll POLLOUT).
 #pragma once
@@ -22,6 +27,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -38,6 +44,13 @@ struct ClientPortLimits {
   std::size_t max_queued_frames = 512;  ///< per queue (board/own, client-to-client)
   int send_buffer_bytes = 0;            ///< SO_SNDBUF asked for (0: the kernel's default)
   int receive_buffer_bytes = 1 << 20;   ///< SO_RCVBUF asked for
+  /// > 0: the board's queue is sized in sending time: at most this many seconds of sends (the
+  /// measured time per datagram times the clients), at least min_queued_frames and what one pump()
+  /// sends to every client, at most
+  /// max_queued_frames; a full queue drops its oldest frame. 0: max_queued_frames, a full queue
+  /// refuses the newest (the session's clients).
+  double max_queue_s = 0;
+  std::size_t min_queued_frames = 16;
 };
 
 struct ClientPortStats {
@@ -47,12 +60,18 @@ struct ClientPortStats {
   uint64_t refused_datagrams = 0;  ///< from senders beyond max_clients: dropped
   uint64_t dropped_frames = 0;     ///< frames that found their send queue full
   uint64_t send_buffer_full = 0;   ///< times a send found the socket's buffer full (EAGAIN/ENOBUFS): kept, sent when writable
+  uint64_t dropped_deliveries = 0; ///< datagrams never sent because their frame was dropped: one per frame and client it had not reached
+  /// dropped_deliveries by MAVLink message id (at most kMaxDropIds ids; the rest under kOtherIds)
+  std::map<uint32_t, uint64_t> dropped_by_msgid;
 };
 
 class ClientPort {
  public:
   static constexpr std::chrono::seconds kClientTimeout{10};
   static constexpr std::size_t kMaxFrameBytes = 280;  ///< one MAVLink 2 frame, signed
+  static constexpr std::size_t kMaxDropIds = 64;        ///< message ids counted apart in dropped_by_msgid
+  static constexpr uint32_t kOtherIds = 0xFFFFFFFF;     ///< dropped_by_msgid's key for the rest
+  static constexpr double kAssumedSendTime_s = 5e-6;    ///< per datagram, until pump() has measured it
 
   /// Binds bind_address:port (port 0: no listening socket, only the fixed peers).
   static Expected<ClientPort> open(const std::string& bind_address, uint16_t port,
@@ -74,10 +93,18 @@ class ClientPort {
   std::size_t queued_frames() const { return own_.frames.size() + forwarded_.frames.size(); }
   /// Room left in the queue of frames from the board and the owner.
   std::size_t own_room() const { return limits_.max_queued_frames - std::min(limits_.max_queued_frames, own_.frames.size()); }
+  /// How many frames each queue holds now (max_queue_s: from the measured sending time).
+  std::size_t queue_limit() const;
+  /// The measured sending time per datagram (seconds), 0 before it is known.
+  double send_time_per_datagram_s() const { return send_s_per_datagram_; }
   /// The last pump() stopped on a full send buffer: wait for POLLOUT before pumping again.
   bool wants_writable() const { return blocked_ && queued_frames() > 0; }
   UdpEndpoint::BufferSizes buffer_sizes() const { return endpoint_ ? endpoint_->buffer_sizes() : UdpEndpoint::BufferSizes{}; }
   uint64_t kernel_rx_drops() const { return endpoint_ ? endpoint_->stats().kernel_rx_drops : 0; }
+  /// UdpEndpoint::poll_kernel_drops(): the drop count now, not only with the next datagram.
+  void poll_kernel_drops() {
+    if (endpoint_) endpoint_->poll_kernel_drops();
+  }
   std::vector<SocketAddress> clients() const;
   const ClientPortStats& stats() const { return stats_; }
   const ClientPortLimits& limits() const { return limits_; }
@@ -104,6 +131,8 @@ class ClientPort {
   void forget_silent_clients();
   /// Sends from `queue` until it is empty, `budget` runs out or the send buffer is full.
   void send_from(Queue& queue, std::size_t& budget);
+  /// Drops the queue's oldest frame, counting the clients it had not reached yet.
+  void drop_oldest(Queue& queue);
 
   std::optional<UdpEndpoint> endpoint_;
   ClientPortLimits limits_;
@@ -112,6 +141,7 @@ class ClientPort {
   Queue forwarded_;  ///< from one client to the others
   ClientPortStats stats_;
   bool blocked_ = false;
+  double send_s_per_datagram_ = 0;  ///< measured in pump(), smoothed
 };
 
 }  // namespace hitl::net

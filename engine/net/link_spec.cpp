@@ -55,13 +55,16 @@ std::string LinkSpec::to_string() const {
   std::string out = std::string(kind_name(kind)) + ":";
   const bool brackets = host.find(':') != std::string::npos || (!host.empty() && host.front() == '[');
   if (!host.empty()) out += (brackets ? "[" + host + "]" : host) + ":";
-  return out + std::to_string(port);
+  return out + std::to_string(port) + (lossless ? "?lossless" : "");
 }
 
-Expected<LinkSpec> parse_link_spec(std::string_view text) {
+Expected<LinkSpec> parse_link_spec(std::string_view whole, LinkSpecOptions allowed) {
   LinkSpec spec;
-  spec.text = std::string(text);
+  spec.text = std::string(whole);
   const std::string what = "'" + spec.text + "'";  // the value; the caller names the option
+  const auto question = whole.find('?');
+  const std::string_view text = whole.substr(0, question);
+  const std::string_view options = question == std::string_view::npos ? std::string_view{} : whole.substr(question + 1);
   const auto colon = text.find(':');
   if (colon == std::string_view::npos) return Error::input(what + ": expected " + std::string(kLinkGrammar));
   const std::string_view scheme = text.substr(0, colon);
@@ -77,6 +80,14 @@ Expected<LinkSpec> parse_link_spec(std::string_view text) {
   if (!port) return port.error();
   spec.host = std::move(parts->first);
   spec.port = *port;
+  if (question != std::string_view::npos) {
+    if (!allowed.lossless) return Error::input(what + ": this option takes no '?' options");
+    if (options != "lossless") return Error::input(what + ": unknown option '" + std::string(options) + "' (lossless)");
+    if (spec.stream())
+      return Error::input(what + ": a tcp: or tcpin: link loses nothing already (the stream waits for its reader); "
+                                 "?lossless is for udp: and udpin:");
+    spec.lossless = true;
+  }
   return spec;
 }
 

@@ -3,6 +3,7 @@
 #include "base/common/clock.h"
 #include "engine/net/send_error.h"
 #include <fcntl.h>
+#include <linux/sock_diag.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -139,8 +140,7 @@ std::optional<Datagram> UdpEndpoint::receive() {
       } else if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
         uint32_t dropped = 0;  // the socket's running count: add what is new since the last datagram
         std::memcpy(&dropped, CMSG_DATA(c), sizeof dropped);
-        stats_.kernel_rx_drops += static_cast<uint32_t>(dropped - last_rxq_ovfl_);
-        last_rxq_ovfl_ = dropped;
+        add_kernel_drops(dropped);
       }
     }
     if (d.rx_time_unix_ns == 0) d.rx_time_unix_ns = unix_time_ns();
@@ -163,6 +163,40 @@ UdpEndpoint::BufferSizes UdpEndpoint::buffer_sizes() const {
   len = sizeof b.send_bytes;
   ::getsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &b.send_bytes, &len);
   return b;
+}
+
+namespace {
+
+/// SO_MEMINFO's figures for the socket; false when the kernel does not give them.
+bool read_meminfo(int fd, uint32_t (&out)[SK_MEMINFO_VARS]) {
+  socklen_t len = sizeof out;
+  return ::getsockopt(fd, SOL_SOCKET, SO_MEMINFO, out, &len) == 0 && len >= sizeof(uint32_t) * (SK_MEMINFO_DROPS + 1);
+}
+
+}  // namespace
+
+void UdpEndpoint::poll_kernel_drops() {
+  uint32_t m[SK_MEMINFO_VARS] = {};
+  if (!read_meminfo(fd_, m)) return;
+  add_kernel_drops(m[SK_MEMINFO_DROPS]);
+}
+
+void UdpEndpoint::add_kernel_drops(uint32_t running_count) {
+  // A datagram's SO_RXQ_OVFL is the count when it was queued, older than what SO_MEMINFO said
+  // since: only a count ahead of the last one adds (the count wraps at 2^32).
+  const uint32_t ahead = running_count - last_rxq_ovfl_;
+  if (static_cast<int32_t>(ahead) <= 0) return;
+  stats_.kernel_rx_drops += ahead;
+  last_rxq_ovfl_ = running_count;
+}
+
+std::size_t UdpEndpoint::receive_queue_bytes() const {
+  uint32_t m[SK_MEMINFO_VARS] = {};
+  return read_meminfo(fd_, m) ? m[SK_MEMINFO_RMEM_ALLOC] : 0;
+}
+
+void UdpEndpoint::set_receive_buffer(int bytes) {
+  ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes);
 }
 
 SendOutcome UdpEndpoint::try_send_to(const SocketAddress& to, std::span<const uint8_t> bytes) {

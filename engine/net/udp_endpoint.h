@@ -94,6 +94,14 @@ class UdpEndpoint {
   const SocketAddress& local_address() const { return local_; }
   const EndpointStats& stats() const { return stats_; }
   BufferSizes buffer_sizes() const;
+  /// Reads the socket's drop count now (SO_MEMINFO), not only when a datagram arrives: the
+  /// datagrams the kernel dropped at the end of a flood, after which nothing more comes, are
+  /// counted too (kernel_rx_drops). The same running count SO_RXQ_OVFL reports, so neither counts twice.
+  void poll_kernel_drops();
+  /// The bytes (with the kernel's per-datagram overhead) waiting in the receive buffer (SO_MEMINFO).
+  std::size_t receive_queue_bytes() const;
+  /// Asks for a receive buffer of `bytes` (SO_RCVBUF: the kernel doubles it, capped at net.core.rmem_max).
+  void set_receive_buffer(int bytes);
   const std::string& name() const { return config_.name; }
   int fd() const { return fd_; }
 
@@ -104,6 +112,8 @@ class UdpEndpoint {
   void learn(const SocketAddress& from);
   /// Counts a refused send and keeps its words for take_send_errors() (once per destination).
   Error refused(const SocketAddress& to, int error);
+  /// Adds what the kernel's running drop count (SO_RXQ_OVFL, SO_MEMINFO) shows beyond the last one.
+  void add_kernel_drops(uint32_t running_count);
 
   int fd_ = -1;
   Config config_;

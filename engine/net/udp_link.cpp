@@ -34,6 +34,18 @@ Status UdpLink::send(std::span<const uint8_t> bytes) {
   return st;
 }
 
+void UdpLink::poll_kernel_drops() {
+  endpoint_.poll_kernel_drops();
+  sync_stats();
+}
+
+SendOutcome UdpLink::try_send(std::span<const uint8_t> bytes) {
+  SendOutcome out = SendOutcome::Refused;
+  if (const auto& to = endpoint_.partner()) out = endpoint_.try_send_to(*to, bytes);
+  sync_stats();
+  return out;
+}
+
 Status UdpLink::flush() {
   if (tx_.empty()) return Ok{};
   auto st = endpoint_.send(tx_);

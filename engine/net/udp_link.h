@@ -35,6 +35,12 @@ class UdpLink final : public Link {
   int fd() const override { return endpoint_.fd(); }
   std::vector<std::string> take_send_errors() override { return endpoint_.take_send_errors(); }
   UdpEndpoint::BufferSizes buffer_sizes() const { return endpoint_.buffer_sizes(); }
+  /// UdpEndpoint::poll_kernel_drops(), into stats().kernel_rx_drops.
+  void poll_kernel_drops();
+  std::size_t receive_queue_bytes() const { return endpoint_.receive_queue_bytes(); }
+  void set_receive_buffer(int bytes) { endpoint_.set_receive_buffer(bytes); }
+  /// send() that tells a full send buffer apart (WouldBlock: keep it and wait for POLLOUT).
+  SendOutcome try_send(std::span<const uint8_t> bytes);
 
  private:
   UdpLink(UdpEndpoint endpoint, const Config& config);

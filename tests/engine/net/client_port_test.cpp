@@ -112,3 +112,59 @@ TEST(ClientPort, PumpSendsAtMostItsBudgetOwnFramesFirst) {
 
 }  // namespace
 }  // namespace hitl::net
+
+namespace hitl::net {
+namespace {
+
+/// A MAVLink 2 frame's bytes with message id `id` and `index` as its first payload byte (the
+/// client port reads only the id; the checksum is not its business).
+std::vector<uint8_t> frame_bytes(uint32_t id, uint8_t index) {
+  std::vector<uint8_t> f(20, 0);
+  f[0] = 0xFD;
+  f[1] = 8;
+  f[7] = static_cast<uint8_t>(id);
+  f[8] = static_cast<uint8_t>(id >> 8);
+  f[9] = static_cast<uint8_t>(id >> 16);
+  f[10] = index;
+  return f;
+}
+
+// Issue 34: a fresh queue (max_queue_s) full drops its OLDEST frame, counted per client it did
+// not reach and by message id; the newest are sent, in order.
+TEST(ClientPort, AFreshQueueDropsTheOldestAndCountsThemByMessage) {
+  ClientPortLimits limits;
+  limits.max_datagrams_out = 4;
+  limits.min_queued_frames = 4;
+  limits.max_queue_s = 1e-9;  // the queue at its floor: 4 frames
+  Fixture f(limits);
+  for (uint8_t i = 0; i < 10; ++i) f.port.broadcast(frame_bytes(i < 5 ? 30 : 105, i));
+  EXPECT_EQ(f.port.queued_frames(), 4u);
+  f.port.pump();
+  std::vector<uint8_t> got;
+  while (f.sink.wait_readable(50))
+    while (auto d = f.sink.receive()) got.push_back(d->bytes[10]);
+  EXPECT_EQ(got, (std::vector<uint8_t>{6, 7, 8, 9}));
+  const auto& s = f.port.stats();
+  EXPECT_EQ(s.dropped_frames, 6u);
+  EXPECT_EQ(s.dropped_deliveries, 6u);  // one client (the fixed peer)
+  EXPECT_EQ(s.dropped_by_msgid.at(30), 5u);
+  EXPECT_EQ(s.dropped_by_msgid.at(105), 1u);
+}
+
+// The session's queue (max_queue_s 0) keeps what it holds and refuses the newest, as before.
+TEST(ClientPort, ACountBoundQueueRefusesTheNewest) {
+  ClientPortLimits limits;
+  limits.max_datagrams_out = 4;
+  limits.max_queued_frames = 4;
+  Fixture f(limits);
+  for (uint8_t i = 0; i < 10; ++i) f.port.broadcast(frame_bytes(30, i));
+  f.port.pump();
+  std::vector<uint8_t> got;
+  while (f.sink.wait_readable(50))
+    while (auto d = f.sink.receive()) got.push_back(d->bytes[10]);
+  EXPECT_EQ(got, (std::vector<uint8_t>{0, 1, 2, 3}));
+  EXPECT_EQ(f.port.stats().dropped_frames, 6u);
+}
+
+}  // namespace
+}  // namespace hitl::net

@@ -100,3 +100,32 @@ TEST(LinkSpec, AUdpPeerIsTheGrammarsUdpOrHostPortAsBefore) {
 
 }  // namespace
 }  // namespace hitl::net
+
+namespace hitl::net {
+namespace {
+
+TEST(LinkSpec, LosslessOnlyWhereTheOptionTakesItAndOnlyForUdp) {
+  auto plain = parse_link_spec("udp:127.0.0.1:14550?lossless");
+  ASSERT_FALSE(plain.ok());  // --connect, --px4-sitl: no '?' options
+  EXPECT_EQ(plain.error().kind, ErrorKind::Input);
+  EXPECT_NE(plain.error().message.find("takes no '?' options"), std::string::npos) << plain.error().message;
+  for (const char* text : {"udp:127.0.0.1:14550?lossless", "udpin:14551?lossless"}) {
+    auto ok = parse_link_spec(text, {.lossless = true});
+    ASSERT_TRUE(ok.ok()) << text << ": " << ok.error().message;
+    EXPECT_TRUE(ok->lossless);
+    EXPECT_EQ(ok->to_string(), text);
+  }
+  EXPECT_FALSE(parse_link_spec("udp:127.0.0.1:14550", {.lossless = true})->lossless);
+  auto unknown = parse_link_spec("udp:127.0.0.1:14550?fast", {.lossless = true});
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_NE(unknown.error().message.find("unknown option 'fast' (lossless)"), std::string::npos) << unknown.error().message;
+  for (const char* stream : {"tcp:127.0.0.1:5760?lossless", "tcpin:5760?lossless"}) {
+    auto tcp = parse_link_spec(stream, {.lossless = true});
+    ASSERT_FALSE(tcp.ok()) << stream;
+    EXPECT_NE(tcp.error().message.find("loses nothing already"), std::string::npos) << tcp.error().message;
+  }
+  EXPECT_FALSE(parse_link_spec("udp:127.0.0.1:bad?lossless", {.lossless = true}).ok());
+}
+
+}  // namespace
+}  // namespace hitl::net
