@@ -1,0 +1,56 @@
+// A tlog's timestamps checked as they are read. A log's clock is outside input: logs joined with
+// `cat` jump back at each join, a corrupted stamp jumps anywhere (year 2262), a ground station left
+// running jumps forward by hours. Measuring across such a jump gives rates that are wrong by any
+// factor; measuring within the stretches that run on gives the true ones.
+//
+// Rules: a record more than kJump_s before or after the log's time so far is a jump, and the next
+// record decides it. When that record runs on from the log's time, the jumped one is set aside (a
+// corrupted stamp: counted, not measured). When it runs on from the jumped one (within kMaxGap_s
+// after it), the log goes on from there: a jump back or a jump forward of more than kMaxGap_s
+// starts a new segment, a shorter pause stays in the segment. The last record, when it jumped, is
+// kept as a pause (ahead by at most kMaxGap_s) or when it is the log's only one, else set aside. Within kJump_s a record's time
+// may go back a little (a clock step): it stays.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+
+#include "engine/mavlink/tlog.h"
+
+namespace hitl::mavlink {
+
+struct TimelineStats {
+  uint64_t segments = 0;           ///< stretches of the log measured on their own (0: no record kept)
+  uint64_t set_aside_records = 0;  ///< records whose stamp no neighbour confirmed: not measured
+};
+
+/// One record as the timeline releases it.
+struct TimedRecord {
+  TlogRecord record;
+  bool new_segment = false;  ///< the first record of a segment after the first
+};
+
+class TlogTimeline {
+ public:
+  static constexpr double kJump_s = 1.0;
+  static constexpr double kMaxGap_s = 60.0;
+
+  explicit TlogTimeline(TlogReader reader) : reader_(std::move(reader)) {}
+  /// The next record kept, in file order; false at the end of the log.
+  bool next(TimedRecord& out);
+  const TimelineStats& timeline() const { return stats_; }
+  const TlogStats& stats() const { return reader_.stats(); }
+  TlogReader& reader() { return reader_; }
+
+ private:
+  void keep(TlogRecord record, bool new_segment);
+
+  TlogReader reader_;
+  std::optional<uint64_t> time_us_;  ///< the log's time so far (the latest kept stamp)
+  std::optional<TlogRecord> jumped_;  ///< a record that jumped, waiting for the next to decide
+  std::deque<TimedRecord> ready_;
+  TimelineStats stats_;
+};
+
+}  // namespace hitl::mavlink

@@ -1,0 +1,105 @@
+// A tlog's timestamps checked as they are read (issue 34): joins start segments, a lone bad stamp
+// is set aside, a pause stays in its segment, and a log's first record needs no less confirming.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "base/mavlink/frame_encoder.h"
+#include "base/mavlink/heartbeat.h"
+#include "engine/mavlink/tlog.h"
+#include "engine/mavlink/tlog_timeline.h"
+#include "tests/support/process.h"
+
+namespace hitl::mavlink {
+namespace {
+
+/// Writes one HEARTBEAT record at each stamp and reads the file back through the timeline: the
+/// stamps kept, a '|' before each that starts a segment.
+struct Read {
+  std::vector<std::string> kept;
+  TimelineStats stats;
+};
+
+Read through_timeline(const std::vector<uint64_t>& stamps_us) {
+  const auto path = test::temp_dir() + "/t.tlog";
+  {
+    auto w = TlogWriter::open(path);
+    FrameEncoder enc(1, 1);
+    FrameBuffer buf;
+    for (uint64_t t : stamps_us) {
+      const std::size_t n = enc.encode(gcs_heartbeat(), buf);
+      EXPECT_TRUE(w->write(t, {buf.data(), n}));
+    }
+    EXPECT_TRUE(w->flush());
+  }
+  auto r = TlogReader::open(path);
+  EXPECT_TRUE(r.ok());
+  TlogTimeline timeline(std::move(r.value()));
+  Read out;
+  TimedRecord rec;
+  while (timeline.next(rec)) out.kept.push_back((rec.new_segment ? "|" : "") + std::to_string(rec.record.time_unix_us));
+  out.stats = timeline.timeline();
+  return out;
+}
+
+constexpr uint64_t T = 1'700'000'000'000'000;  // 2023, in us
+constexpr uint64_t ms = 1000, s = 1'000'000;
+
+TEST(TlogTimeline, AJoinBackStartsASegment) {
+  const auto r = through_timeline({T, T + 4 * ms, T + 8 * ms, T + 2 * s, T + 2 * s + 4 * ms, T, T + 4 * ms, T + 8 * ms});
+  EXPECT_EQ(r.kept, (std::vector<std::string>{std::to_string(T), std::to_string(T + 4 * ms), std::to_string(T + 8 * ms),
+                                               std::to_string(T + 2 * s), std::to_string(T + 2 * s + 4 * ms), "|" + std::to_string(T),
+                                               std::to_string(T + 4 * ms), std::to_string(T + 8 * ms)}));
+  EXPECT_EQ(r.stats.segments, 2u);
+  EXPECT_EQ(r.stats.set_aside_records, 0u);
+}
+
+TEST(TlogTimeline, ALoneBadStampIsSetAsideWhereverItJumps) {
+  for (uint64_t bad : {T + 7'000'000 * s, T - 30 * s, T + 30 * s, uint64_t{0}, ~uint64_t{0}}) {
+    const auto r = through_timeline({T, T + 4 * ms, bad, T + 8 * ms, T + 12 * ms});
+    EXPECT_EQ(r.kept.size(), 4u) << bad;
+    EXPECT_EQ(r.stats.segments, 1u) << bad;
+    EXPECT_EQ(r.stats.set_aside_records, 1u) << bad;
+  }
+  // Two bad ones in a row, then the log goes on; and a bad first and a bad last record.
+  const auto two = through_timeline({T, T + 4 * ms, T + 900 * s, 5, T + 8 * ms});
+  EXPECT_EQ(two.kept.size(), 3u);
+  EXPECT_EQ(two.stats.set_aside_records, 2u);
+  const auto ends = through_timeline({42, T, T + 4 * ms, T + 8 * ms, T + 9'999 * s});
+  EXPECT_EQ(ends.kept, (std::vector<std::string>{std::to_string(T), std::to_string(T + 4 * ms), std::to_string(T + 8 * ms)}));
+  EXPECT_EQ(ends.stats.set_aside_records, 2u);
+  EXPECT_EQ(ends.stats.segments, 1u);
+}
+
+TEST(TlogTimeline, APauseUpToAMinuteStaysLongerStartsASegment) {
+  const auto pause = through_timeline({T, T + 1 * s, T + 40 * s, T + 41 * s});
+  EXPECT_EQ(pause.stats.segments, 1u);
+  EXPECT_EQ(pause.kept.size(), 4u);
+  const auto hours = through_timeline({T, T + 1 * s, T + 7200 * s, T + 7201 * s});
+  EXPECT_EQ(hours.stats.segments, 2u);
+  EXPECT_EQ(hours.kept.back(), std::to_string(T + 7201 * s));
+  EXPECT_EQ(hours.kept[2], "|" + std::to_string(T + 7200 * s));
+  // A slow stream (one record every 2 s) is a run of pauses, each confirmed by the next.
+  const auto slow = through_timeline({T, T + 2 * s, T + 4 * s, T + 6 * s, T + 8 * s});
+  EXPECT_EQ(slow.kept.size(), 5u);
+  EXPECT_EQ(slow.stats.segments, 1u);
+  EXPECT_EQ(slow.stats.set_aside_records, 0u);
+}
+
+TEST(TlogTimeline, AClockStepBackWithinASecondStays) {
+  const auto r = through_timeline({T, T + 500 * ms, T + 100 * ms, T + 600 * ms});
+  EXPECT_EQ(r.kept.size(), 4u);
+  EXPECT_EQ(r.stats.segments, 1u);
+  EXPECT_EQ(r.stats.set_aside_records, 0u);
+}
+
+TEST(TlogTimeline, AOneRecordLogIsKept) {
+  const auto r = through_timeline({T});
+  EXPECT_EQ(r.kept.size(), 1u);
+  EXPECT_EQ(r.stats.segments, 1u);
+  EXPECT_EQ(through_timeline({}).stats.segments, 0u);
+}
+
+}  // namespace
+}  // namespace hitl::mavlink
