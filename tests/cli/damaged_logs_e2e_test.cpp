@@ -1,7 +1,7 @@
 // Issue 34, damaged logs and inputs that are not files, through the real binary: a recording joined
 // to itself 20 times is measured at its true rate in 20 segments; corrupted stamps are set aside
-// and said; --expect does not judge a log it cannot measure; a FIFO that never writes ends on
-// SIGINT/SIGTERM within a second; /dev/zero is refused.
+// and said; --expect does not judge a log it cannot measure; a report draws what is valid; a FIFO
+// that never writes ends on SIGINT/SIGTERM within a second; /dev/zero is refused.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sys/stat.h>
@@ -143,6 +143,19 @@ TEST(DamagedLogsE2E, OneBytePercentFlippedStillMeasuresWithoutACrash) {
   EXPECT_GT(j["set_aside_records"].get<int>(), 0);
   EXPECT_LT(j["duration_s"].get<double>(), 10) << "never stretched to years by one stamp";
   EXPECT_GT(hil_sensor_hz(j), 100);
+}
+
+TEST(DamagedLogsE2E, ReportOnATenPercentFlippedLogStillGivesAPage) {
+  std::string damaged = read_bytes(session_log());
+  std::mt19937 rng(10);
+  for (std::size_t i = 0; i < damaged.size() / 10; ++i) damaged[rng() % damaged.size()] = static_cast<char>(rng());
+  const std::string dir = test::temp_dir();
+  write_bytes(dir + "/flipped.tlog", damaged);
+  auto r = test::run_hitl({"report", dir + "/flipped.tlog", "-o", dir + "/flipped.html"}, 120s);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("gnuplot failed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("set aside"), std::string::npos) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/flipped.html"));
 }
 
 TEST(DamagedLogsE2E, AFifoThatNeverWritesEndsOnSigintAndSigtermWithinASecond) {
