@@ -178,6 +178,39 @@ TEST(DamagedLogsE2E, AFifoThatNeverWritesEndsOnSigintAndSigtermWithinASecond) {
   }
 }
 
+/// The session log with `add_us` added to the stamp of every record from the middle on.
+std::string with_gap_from_the_middle(uint64_t add_us) {
+  std::string bytes = read_bytes(session_log());
+  const auto offsets = record_offsets(bytes);
+  for (std::size_t i = offsets.size() / 2; i < offsets.size(); ++i) {
+    uint64_t t = 0;
+    for (int b = 0; b < 8; ++b) t = (t << 8) | static_cast<uint8_t>(bytes[offsets[i] + b]);
+    t += add_us;
+    for (int b = 0; b < 8; ++b) bytes[offsets[i] + b] = static_cast<char>(t >> (56 - 8 * b));
+  }
+  return bytes;
+}
+
+TEST(DamagedLogsE2E, ReplayRefusesAClockThatJumpsAndGivesUpOnASilentBoardInAGap) {
+  const std::string dir = test::temp_dir();
+  write_bytes(dir + "/years.tlog", with_gap_from_the_middle(600'000'000'000'000ull));  // 19 years
+  auto years = test::run_hitl({"replay", dir + "/years.tlog", "-i", "127.0.0.1", "--hil-port", std::to_string(test::free_udp_port()),
+                               "--vio-port", "0", "--local-port", "0"},
+                              30s);
+  EXPECT_EQ(years.exit_code, 2) << years.err;
+  EXPECT_NE(years.err.find("recording '" + dir + "/years.tlog''s clock jumps (2 segments, 0 records"), std::string::npos) << years.err;
+  // A 40 s pause (one segment): nothing answers, so the replay gives up after 5 s of silence
+  // instead of waiting the pause out.
+  write_bytes(dir + "/pause.tlog", with_gap_from_the_middle(40'000'000));
+  const auto start = std::chrono::steady_clock::now();
+  auto pause = test::run_hitl({"replay", dir + "/pause.tlog", "-i", "127.0.0.1", "--hil-port", std::to_string(test::free_udp_port()),
+                               "--vio-port", "0", "--local-port", "0"},
+                              90s);
+  EXPECT_EQ(pause.exit_code, 1) << pause.err;
+  EXPECT_NE(pause.err.find("said nothing for 5 s"), std::string::npos) << pause.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 30s) << "waited the recorded pause out";
+}
+
 TEST(DamagedLogsE2E, DevicesAreRefusedAndReportAndReplayNeedARegularFile) {
   auto zero = test::run_hitl({"inspect", "--tlog", "/dev/zero"}, 10s);
   EXPECT_EQ(zero.exit_code, 2) << zero.err;
