@@ -49,7 +49,7 @@ Expected<std::unique_ptr<Inspector>> Inspector::open(const InspectConfig& config
     case InspectConfig::Source::Tlog: {
       auto reader = mavlink::TlogReader::open(config.tlog_path, mavlink::TlogInput::FileOrPipe);
       if (!reader) return reader.error();
-      in->reader_.emplace(std::move(reader.value()));
+      in->reader_.emplace(std::move(reader.value()), &messages);
       break;
     }
   }
@@ -174,6 +174,11 @@ Expected<Inspector::EndReason> Inspector::run_tlog(const std::atomic<bool>& stop
   while (!stop.load()) {
     if (!reader_->next(timed)) return reader_->reader().stopped() ? EndReason::Stopped : EndReason::EndOfLog;
     const mavlink::TlogRecord& rec = timed.record;
+    if (timed.unchecked) {  // its frame does not check: counted by the parser, its stamp ignored
+      stats_.on_datagram();
+      parser_.parse_datagram(rec.frame, [&](const mavlink::Frame& f) { handle(f, "tlog", now_ns_, observer); });
+      continue;
+    }
     // A log's clock is outside input: saturate rather than overflow (a corrupt stamp reads as ~2262).
     const int64_t t = rec.time_unix_us > static_cast<uint64_t>(INT64_MAX / 1000) ? INT64_MAX
                                                                                 : static_cast<int64_t>(rec.time_unix_us) * 1000;

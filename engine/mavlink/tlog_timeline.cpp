@@ -15,6 +15,13 @@ bool near(uint64_t t_us, uint64_t from_us, uint64_t before_us, uint64_t after_us
 
 }  // namespace
 
+bool TlogTimeline::checks(const TlogRecord& record) {
+  if (!checker_) return true;
+  bool valid = false;
+  checker_->parse_datagram(record.frame, [&](const Frame& f) { valid = valid || f.desc != nullptr; });
+  return valid;
+}
+
 void TlogTimeline::keep(TlogRecord record, bool new_segment) {
   if (!time_us_ || new_segment) {
     ++stats_.segments;
@@ -40,6 +47,10 @@ bool TlogTimeline::next(TimedRecord& out) {
       ++stats_.set_aside_records;
       jumped_.reset();
       return false;
+    }
+    if (!checks(r)) {  // says nothing about the log's time
+      ready_.push_back({std::move(r), false, true});
+      continue;
     }
     if (!jumped_) {
       if (time_us_ && near(r.time_unix_us, *time_us_, kJump_us, kJump_us)) keep(std::move(r), false);

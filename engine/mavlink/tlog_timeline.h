@@ -10,12 +10,19 @@
 // starts a new segment, a shorter pause stays in the segment. The last record, when it jumped, is
 // kept as a pause (ahead by at most kMaxGap_s) or when it is the log's only one, else set aside. Within kJump_s a record's time
 // may go back a little (a clock step): it stays.
+//
+// Given the message set, only a record whose frame checks (a known message, its checksum right)
+// counts: one that does not (a corrupted frame, or "a record" found inside garbage, whose stamp is
+// whatever bytes preceded it) is released at once as unchecked, neither moving the log's time nor
+// deciding a jump; its frame fails the parser where the caller counts it.
 #pragma once
 
 #include <cstdint>
 #include <deque>
 #include <optional>
 
+#include "base/mavlink/frame_parser.h"
+#include "base/mavlink/message_set.h"
 #include "engine/mavlink/tlog.h"
 
 namespace hitl::mavlink {
@@ -29,6 +36,7 @@ struct TimelineStats {
 struct TimedRecord {
   TlogRecord record;
   bool new_segment = false;  ///< the first record of a segment after the first
+  bool unchecked = false;    ///< its frame does not check: its stamp says nothing (use the log's time)
 };
 
 class TlogTimeline {
@@ -36,7 +44,11 @@ class TlogTimeline {
   static constexpr double kJump_s = 1.0;
   static constexpr double kMaxGap_s = 60.0;
 
-  explicit TlogTimeline(TlogReader reader) : reader_(std::move(reader)) {}
+  /// `messages` (kept by the caller): judge only records whose frame checks; none: every record.
+  explicit TlogTimeline(TlogReader reader, const MessageSet* messages = nullptr)
+      : reader_(std::move(reader)), messages_(messages) {
+    if (messages_ != nullptr) checker_.emplace(*messages_);
+  }
   /// The next record kept, in file order; false at the end of the log.
   bool next(TimedRecord& out);
   const TimelineStats& timeline() const { return stats_; }
@@ -46,7 +58,11 @@ class TlogTimeline {
  private:
   void keep(TlogRecord record, bool new_segment);
 
+  bool checks(const TlogRecord& record);
+
   TlogReader reader_;
+  const MessageSet* messages_ = nullptr;
+  std::optional<FrameParser> checker_;
   std::optional<uint64_t> time_us_;  ///< the log's time so far (the latest kept stamp)
   std::optional<TlogRecord> jumped_;  ///< a record that jumped, waiting for the next to decide
   std::deque<TimedRecord> ready_;

@@ -139,12 +139,13 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   {
     auto opened = mavlink::TlogReader::open(path);
     if (!opened) return opened.error();
-    mavlink::TlogTimeline reader(std::move(opened.value()));
+    mavlink::TlogTimeline reader(std::move(opened.value()), &messages);
     mavlink::FrameParser parser(messages);
     mavlink::TimedRecord timed;
     const mavlink::TlogRecord& r = timed.record;
     bool first = true;
     for (uint64_t n = 0; n < limits.max_records && reader.next(timed); ++n) {
+      if (timed.unchecked) continue;  // no frame that checks: its stamp says nothing
       if (first) clock.set_first_wall(r.time_unix_us);
       first = false;
       parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
@@ -160,7 +161,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   // Pass 2: the series.
   auto opened = mavlink::TlogReader::open(path);
   if (!opened) return opened.error();
-  auto reader = std::make_unique<mavlink::TlogTimeline>(std::move(opened.value()));
+  auto reader = std::make_unique<mavlink::TlogTimeline>(std::move(opened.value()), &messages);
   mavlink::FrameParser parser(messages);
   FlightLog log;
   log.path = path;
@@ -196,6 +197,10 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     }
     if (!reader->next(timed)) break;
     ++log.records;
+    if (timed.unchecked) {  // counted in the parser's errors; its stamp says nothing
+      parser.parse_datagram(r.frame, [](const mavlink::Frame&) {});
+      continue;
+    }
     const uint64_t wall_us = r.time_unix_us;
     const double t_s = clock.t_s(wall_us);
     if (!first_wall_us) first_wall_us = wall_us, first_t_s = t_s;

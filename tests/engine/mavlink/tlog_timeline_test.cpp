@@ -7,6 +7,7 @@
 
 #include "base/mavlink/frame_encoder.h"
 #include "base/mavlink/heartbeat.h"
+#include "base/mavlink/message_set.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/mavlink/tlog_timeline.h"
 #include "tests/support/process.h"
@@ -99,6 +100,47 @@ TEST(TlogTimeline, AOneRecordLogIsKept) {
   EXPECT_EQ(r.kept.size(), 1u);
   EXPECT_EQ(r.stats.segments, 1u);
   EXPECT_EQ(through_timeline({}).stats.segments, 0u);
+}
+
+TEST(TlogTimeline, GivenTheMessagesARecordWhoseFrameDoesNotCheckNeitherMovesTimeNorDecides) {
+  // Good HEARTBEATs, and between them "records" found in garbage: a frame whose checksum fails,
+  // each under a stamp of whatever bytes preceded it (here ten years on, and a nearby pair that
+  // would otherwise confirm each other as a segment).
+  const auto path = test::temp_dir() + "/u.tlog";
+  {
+    auto w = TlogWriter::open(path);
+    FrameEncoder enc(1, 1);
+    FrameBuffer buf;
+    auto good = [&](uint64_t t) {
+      const std::size_t n = enc.encode(gcs_heartbeat(), buf);
+      EXPECT_TRUE(w->write(t, {buf.data(), n}));
+    };
+    auto broken = [&](uint64_t t) {
+      std::size_t n = enc.encode(gcs_heartbeat(), buf);
+      buf[n - 1] ^= 0xFF;  // the checksum
+      EXPECT_TRUE(w->write(t, {buf.data(), n}));
+    };
+    good(T);
+    good(T + 4 * ms);
+    broken(T + 315'000'000 * s);
+    broken(T + 315'000'000 * s + 1 * ms);
+    good(T + 8 * ms);
+    good(T + 12 * ms);
+    EXPECT_TRUE(w->flush());
+  }
+  const auto set = MessageSet::compiled();
+  auto r = TlogReader::open(path);
+  ASSERT_TRUE(r.ok());
+  TlogTimeline timeline(std::move(r.value()), &set);
+  TimedRecord rec;
+  std::vector<bool> unchecked;
+  while (timeline.next(rec)) {
+    EXPECT_FALSE(rec.new_segment);
+    unchecked.push_back(rec.unchecked);
+  }
+  EXPECT_EQ(unchecked, (std::vector<bool>{false, false, true, true, false, false}));
+  EXPECT_EQ(timeline.timeline().segments, 1u);
+  EXPECT_EQ(timeline.timeline().set_aside_records, 0u);
 }
 
 }  // namespace
