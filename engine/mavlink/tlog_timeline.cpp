@@ -28,7 +28,9 @@ void TlogTimeline::keep(TlogRecord record, bool new_segment) {
     new_segment = time_us_.has_value();
     time_us_ = record.time_unix_us;
   }
-  time_us_ = std::max(*time_us_, record.time_unix_us);
+  // The last kept stamp, not the largest: one bad stamp a little ahead (kept, within kJump_s) must
+  // not ratchet the log's time away from the records after it.
+  time_us_ = record.time_unix_us;
   ready_.push_back({std::move(record), new_segment});
 }
 
@@ -62,7 +64,10 @@ bool TlogTimeline::next(TimedRecord& out) {
       ++stats_.set_aside_records;  // the log runs on from before the jump: the jump was a bad stamp
       jumped_.reset();
       keep(std::move(r), false);
-    } else if (near(r.time_unix_us, jumped_us, kJump_us, kMaxGap_us)) {
+    } else if (near(r.time_unix_us, jumped_us, kJump_us, kMaxGap_us) &&
+               (!time_us_ || jumped_us > *time_us_ || r.time_unix_us + kJump_us < *time_us_)) {
+      // (A jump back is confirmed only by a record that is back too, not one running on, after
+      // a gap, from the log's time.)
       // The log goes on from the jumped record: a new segment unless it was a pause forward.
       const bool pause = time_us_ && jumped_us > *time_us_ && jumped_us - *time_us_ <= kMaxGap_us;
       keep(std::move(*jumped_), !pause);

@@ -6,7 +6,7 @@
 // Rules: a record more than kJump_s before or after the log's time so far is a jump, and the next
 // record decides it. When that record runs on from the log's time, the jumped one is set aside (a
 // corrupted stamp: counted, not measured). When it runs on from the jumped one (within kMaxGap_s
-// after it), the log goes on from there: a jump back or a jump forward of more than kMaxGap_s
+// after it; after a jump back, only a record that is back too), the log goes on from there: a jump back or a jump forward of more than kMaxGap_s
 // starts a new segment, a shorter pause stays in the segment. The last record, when it jumped, is
 // kept as a pause (ahead by at most kMaxGap_s) or when it is the log's only one, else set aside. Within kJump_s a record's time
 // may go back a little (a clock step): it stays.
@@ -63,7 +63,7 @@ class TlogTimeline {
   TlogReader reader_;
   const MessageSet* messages_ = nullptr;
   std::optional<FrameParser> checker_;
-  std::optional<uint64_t> time_us_;  ///< the log's time so far (the latest kept stamp)
+  std::optional<uint64_t> time_us_;  ///< the log's time so far (the last kept stamp)
   std::optional<TlogRecord> jumped_;  ///< a record that jumped, waiting for the next to decide
   std::deque<TimedRecord> ready_;
   TimelineStats stats_;

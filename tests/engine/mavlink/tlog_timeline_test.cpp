@@ -95,6 +95,22 @@ TEST(TlogTimeline, AClockStepBackWithinASecondStays) {
   EXPECT_EQ(r.stats.set_aside_records, 0u);
 }
 
+TEST(TlogTimeline, BadStampsAheadDoNotRatchetTheLogsTimeAndABackJumpNeedsARecordBackToo) {
+  // Bad stamps a little ahead: the first (0.9 s) is within 1 s and kept; the second is 1.7 s
+  // ahead of the log's time, set aside; the records after them run on in one segment (measured
+  // from the largest stamp so far, 1.7 s would have been kept and the rest made a jump back).
+  const auto ratchet = through_timeline({T, T + 4 * ms, T + 900 * ms, T + 8 * ms, T + 1700 * ms, T + 12 * ms, T + 16 * ms});
+  EXPECT_EQ(ratchet.stats.segments, 1u);
+  EXPECT_EQ(ratchet.stats.set_aside_records, 1u);
+  EXPECT_EQ(ratchet.kept.size(), 6u);
+  // A bad stamp 8 s back, then the log runs on after a 1.5 s gap: the bad one is set aside, not a
+  // segment confirmed by a record within a minute after it.
+  const auto gap = through_timeline({T, T + 10 * s, T + 2 * s, T + 11500 * ms, T + 11504 * ms});
+  EXPECT_EQ(gap.stats.segments, 1u);
+  EXPECT_EQ(gap.stats.set_aside_records, 1u);
+  EXPECT_EQ(gap.kept.back(), std::to_string(T + 11504 * ms));
+}
+
 TEST(TlogTimeline, AOneRecordLogIsKept) {
   const auto r = through_timeline({T});
   EXPECT_EQ(r.kept.size(), 1u);
