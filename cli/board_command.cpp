@@ -15,6 +15,8 @@
 #include "engine/board/board_status.h"
 #include "engine/board/plan_runner.h"
 #include "engine/board/px4_link.h"
+#include "engine/net/adb_client.h"
+#include "engine/net/socket_address.h"
 
 namespace hitl::cli {
 namespace {
@@ -222,6 +224,18 @@ int run_status(const GlobalOptions& g, const BoardOptions& o, const Reporter& r,
   return kExitOk;
 }
 
+/// A dry run over the network touches nothing, `adb connect` included: the board must be connected
+/// to adb already (`adb devices` lists IP:5555), and is read through that device.
+Expected<net::Adb> connected_network_adb(const std::string& ip) {
+  const std::string serial = ip + ":" + std::to_string(net::kAdbTcpPort);
+  auto listed = net::list_adb_devices();
+  if (!listed) return listed.error();
+  for (const auto& d : listed->devices)
+    if (d.serial == serial && d.ready()) return net::Adb::connect(serial);
+  return Error::unavailable("a dry run does not run `adb connect " + serial + "` (it changes nothing), and adb has no device " + serial +
+                            " connected: run `adb connect " + serial + "` first, or give --adb for USB");
+}
+
 int run_board(const GlobalOptions& g, const BoardOptions& o, const std::string& action) {
   const Reporter r{g, action};
   std::vector<board::PackageFile> packages;
@@ -237,7 +251,10 @@ int run_board(const GlobalOptions& g, const BoardOptions& o, const std::string& 
       packages.push_back(*p);
     }
   }
-  auto adb = o.network ? net::Adb::connect_network(o.link.target_ip) : net::Adb::connect(o.adb_serial);
+  if (o.network) {  // the address first: a name that does not resolve, or is no host at all, is refused before adb runs
+    if (auto address = net::resolve_board_address(o.link.target_ip, net::kAdbTcpPort); !address) return r.error(address.error());
+  }
+  auto adb = !o.network ? net::Adb::connect(o.adb_serial) : o.dry_run ? connected_network_adb(o.link.target_ip) : net::Adb::connect_network(o.link.target_ip);
   if (!adb) return r.error(adb.error());
   board::AdbBoardShell shell(*adb);
   log_info(g, "hitl board " + action + ": " + shell.describe());

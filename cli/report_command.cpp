@@ -29,12 +29,14 @@ Expected<report::ReportResult> write_report_and_say(const GlobalOptions& g, cons
                   r->plots, static_cast<double>(r->bytes) / 1024.0, r->seconds, r->missing.empty() ? "" : "; the log lacks:");
     std::cerr << line << '\n';
     for (const auto& m : r->missing) std::cerr << "  " << m << '\n';
+    if (!r->skipped.empty()) std::cerr << "hitl " << command << ": not drawn from the damaged log:\n";
+    for (const auto& m : r->skipped) std::cerr << "  " << m << '\n';
   }
   return r;
 }
 
 nlohmann::json report_json(const report::ReportResult& r) {
-  return {{"path", r.html_path}, {"bytes", r.bytes}, {"plots", r.plots}, {"seconds", r.seconds}, {"lacks", r.missing}};
+  return {{"path", r.html_path}, {"bytes", r.bytes}, {"plots", r.plots}, {"seconds", r.seconds}, {"lacks", r.missing}, {"skipped", r.skipped}};
 }
 
 void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) {

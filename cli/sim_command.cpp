@@ -14,6 +14,7 @@
 #include "cli/session_dashboard.h"
 #include "cli/report_output.h"
 #include "cli/sim_output.h"
+#include "engine/faults/fault_schedule.h"
 #include "engine/faults/scenario.h"
 #include "engine/hil/session.h"
 #include "engine/hil/stack_peer.h"
@@ -51,25 +52,21 @@ std::string recording_for_report(const std::string& report_path) {
   return (html ? report_path.substr(0, report_path.size() - ext.size()) : report_path) + ".tlog";
 }
 
-/// --fault and --scenario into the session's faults (docs/faults.md); false after saying what is wrong.
-bool read_faults(const std::string& cmd, const SimOptions& opt, std::vector<faults::FaultSpec>& out) {
+/// --fault and --scenario into the session's faults (docs/faults.md); the error says which.
+Status read_faults(const SimOptions& opt, std::vector<faults::FaultSpec>& out) {
   const faults::Suggest suggest = [](const std::string& name) { return closest(name, faults::fault_names()).value_or(""); };
   for (const auto& text : opt.fault_specs) {
     auto spec = faults::parse_fault(text, suggest);
-    if (!spec) {
-      log_error(cmd, "--fault " + spec.error().message);
-      return false;
-    }
+    if (!spec) return Error::usage("--fault " + spec.error().message);
     out.push_back(*spec);
   }
-  if (opt.scenario_file.empty()) return true;
-  auto scenario = faults::load_scenario(opt.scenario_file, suggest);
-  if (!scenario) {
-    log_error(cmd, "--scenario: " + scenario.error().message);
-    return false;
+  if (!opt.scenario_file.empty()) {
+    auto scenario = faults::load_scenario(opt.scenario_file, suggest);
+    if (!scenario) return scenario.error().prefixed("--scenario: ");
+    out.insert(out.end(), scenario->begin(), scenario->end());
   }
-  out.insert(out.end(), scenario->begin(), scenario->end());
-  return true;
+  if (auto limit = faults::check_active_limit(out); !limit) return limit.error().prefixed("--fault and --scenario: ");
+  return Ok{};
 }
 
 int run_sim(const GlobalOptions& global, SimOptions& opt) {
@@ -103,7 +100,10 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     if (opt.tui) for_f_key = std::move(trajectory.value());
     else cfg.trajectory = std::move(trajectory.value());
   }
-  if (!read_faults(cmd, opt, cfg.faults)) return kExitUsage;
+  if (auto faults_read = read_faults(opt, cfg.faults); !faults_read) {
+    log_error(cmd, faults_read.error().message);
+    return exit_code(faults_read.error());
+  }
   cfg.vehicle = *vehicle;
   cfg.world = *world;
   cfg.sysid = static_cast<uint8_t>(opt.sysid);

@@ -42,7 +42,7 @@ nlohmann::json fault_records_json(const std::vector<faults::FaultRecord>& record
 nlohmann::json fault_event_json(const faults::FaultChange& change) {
   return {{"type", "status"},
           {"fault",
-           {{"event", change.started ? "started" : "ended"},
+           {{"event", change.refused ? "refused" : change.started ? "started" : "ended"},
             {"name", change.spec.name()},
             {"args", change.spec.args},
             {"sim_time_s", change.t_s},

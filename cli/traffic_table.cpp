@@ -37,7 +37,13 @@ std::string traffic_table(const telemetry::TrafficSummary& s) {
                static_cast<unsigned long long>(s.parser.signature_errors),
                static_cast<unsigned long long>(s.parser.unsigned_rejected),
                static_cast<unsigned long long>(s.parser.bad_incompat_flags));
-  return out + "\n";
+  out += "\n";
+  if (s.segments > 1 || s.set_aside_records > 0)
+    out += fmt("log time: %llu segment%s%s, %llu record%s set aside (a stamp that jumped and no next record confirmed)\n",
+               static_cast<unsigned long long>(s.segments), s.segments == 1 ? "" : "s",
+               s.segments == 1 ? "" : " measured apart (the log's clock jumped back, or ahead more than 60 s)",
+               static_cast<unsigned long long>(s.set_aside_records), s.set_aside_records == 1 ? "" : "s");
+  return out;
 }
 
 std::string traffic_line(const telemetry::TrafficSummary& s) {

@@ -20,6 +20,8 @@ struct SequenceStats {
 class SequenceTracker {
  public:
   void observe(uint8_t seq);
+  /// The next frame starts the sequence again (a joined log's next part): no loss counted across.
+  void restart() { started_ = false; }
   const SequenceStats& stats() const { return stats_; }
 
  private:

@@ -29,9 +29,30 @@ std::string FaultRecord::text() const {
 std::string FaultChange::text() const {
   char t[48];
   std::snprintf(t, sizeof t, "t=%.3f s fault ", t_s);
+  if (refused) return t + label(spec) + " refused: " + std::to_string(kMaxActiveFaults) + " faults are active, the limit";
   std::string out = t + label(spec) + (started ? " started" : " ended");
   if (started && spec.duration_s) out += " (" + compact(*spec.duration_s) + " s)";
   return out;
+}
+
+Status check_active_limit(const std::vector<FaultSpec>& specs) {
+  // Starts and ends over time; at one time ends count before starts (a fault ending at t and one
+  // starting at t do not overlap).
+  std::vector<std::pair<double, int>> steps;
+  for (const auto& s : specs) {
+    steps.push_back({s.start_s, +1});
+    if (s.duration_s && !s.start_when) steps.push_back({s.start_s + *s.duration_s, -1});
+  }
+  std::sort(steps.begin(), steps.end());
+  std::size_t active = 0, most = 0;
+  double most_at_s = 0;
+  for (const auto& [t_s, step] : steps) {
+    active = step > 0 ? active + 1 : active - 1;
+    if (active > most) most = active, most_at_s = t_s;
+  }
+  if (most <= kMaxActiveFaults) return Ok{};
+  return Error::input("at most " + std::to_string(kMaxActiveFaults) + " faults can be active at once; " + std::to_string(most) +
+                      " could be at t=" + compact(most_at_s) + " s");
 }
 
 FaultSchedule::FaultSchedule(std::vector<FaultSpec> specs) {
@@ -63,6 +84,11 @@ std::vector<FaultChange> FaultSchedule::update(double t_s, const VehicleObservat
   for (auto& e : entries_) {
     if (e.state == State::Pending && t_s + kTimeEpsilon_s >= e.spec.start_s &&
         (!e.spec.start_when || met(*e.spec.start_when, e.start_held_s, t_s, seen))) {
+      if (active_count() >= kMaxActiveFaults) {
+        e.state = State::Done;
+        changes.push_back({false, e.spec, t_s, true});
+        continue;
+      }
       e.state = State::Active;
       e.started_s = t_s;
       e.record = records_.size();
@@ -158,6 +184,12 @@ void FaultSchedule::fold(double t_s) {
       case FaultKind::VioQuality: a.vio_quality = static_cast<int>(v[0]); break;
     }
   }
+  // Products of scales within one fault's range (1,100 stacked motor:0,2 are 2, not 2^1100).
+  auto scale_max = [](FaultKind kind) { return info(kind).args.back().max; };
+  for (double& k : a.motor_effectiveness) k = std::min(k, info(FaultKind::Motor).args[1].max);
+  a.imu_noise_scale = std::min(a.imu_noise_scale, scale_max(FaultKind::ImuNoise));
+  a.gps_noise_scale = std::min(a.gps_noise_scale, scale_max(FaultKind::GpsNoise));
+  a.mag_scale = std::min(a.mag_scale, scale_max(FaultKind::MagScale));
   a.hil_link.drop_p = 1.0 - hil_pass;
   a.vio_link.drop_p = 1.0 - vio_pass;
   a.hil_link.reorder_p = 1.0 - hil_keep;
@@ -183,6 +215,10 @@ std::vector<FaultChange> FaultSchedule::clear(const std::string& name, double t_
   }
   fold(t_s);
   return changes;
+}
+
+std::size_t FaultSchedule::active_count() const {
+  return static_cast<std::size_t>(std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.state == State::Active; }));
 }
 
 std::vector<std::string> FaultSchedule::active_texts() const {

@@ -39,7 +39,8 @@ struct LinkImpairment {
 };
 
 /// Everything active at one time, folded: biases and offsets add, motor scales and the chances of a
-/// datagram getting through multiply, delays add, the latest gps-degrade wins; on a link, the latest
+/// datagram getting through multiply (a product of scales stays within one fault's range: motor
+/// 0..2, imu-noise and gps-noise 0..100, mag-scale 0..10), delays add, the latest gps-degrade wins; on a link, the latest
 /// burst wins, the lowest rate, jitters add, reorder and duplicate chances combine as drops do.
 struct ActiveFaults {
   bool gps_loss = false;
@@ -96,12 +97,24 @@ struct FaultRecord {
 };
 
 struct FaultChange {
-  bool started = true;  ///< false: ended
+  bool started = true;  ///< false: ended (or refused)
   FaultSpec spec;
   double t_s = 0;  ///< simulated time of the step it took effect in
-  /// "t=20.000 s fault gps-loss started (10 s)", "t=30.000 s fault gps-loss ended"
+  bool refused = false;  ///< due while kMaxActiveFaults were active: never started
+  /// "t=20.000 s fault gps-loss started (10 s)", "t=30.000 s fault gps-loss ended",
+  /// "t=30.000 s fault gps-loss refused: 64 faults are active, the limit"
   std::string text() const;
 };
+
+/// At most this many faults are active at once: a scenario or --fault list that would have more
+/// is refused at load (check_active_limit); one due later (a condition, a fault started by hand)
+/// while this many are active is refused then (a FaultChange with refused set).
+inline constexpr std::size_t kMaxActiveFaults = 64;
+
+/// Ok, or an Input error "at most 64 faults can be active at once; 1100 could be at t=0 s" when
+/// more than kMaxActiveFaults of `specs` overlap in time. An event with a condition counts from its
+/// earliest start (at_s) and, ending on a condition or never, to the end of the session.
+Status check_active_limit(const std::vector<FaultSpec>& specs);
 
 /// What the conditions of scenario events look at, each step.
 struct VehicleObservation {
@@ -124,6 +137,7 @@ class FaultSchedule {
   const std::vector<FaultRecord>& records() const { return records_; }
   /// "gps-loss", "motor:2,0.6" for each active fault.
   std::vector<std::string> active_texts() const;
+  std::size_t active_count() const;
   bool empty() const { return entries_.empty(); }
 
  private:

@@ -81,7 +81,7 @@ void Session::Impl::apply_faults(EventSink& events) {
   auto changes = fault_schedule.update(sim_time_s(), seen);
   changes.insert(changes.begin(), cleared.begin(), cleared.end());
   for (auto& change : changes) {
-    SessionEvent e{Severity::Info, change.text(), std::nullopt};
+    SessionEvent e{change.refused ? Severity::Warning : Severity::Info, change.text(), std::nullopt};
     services->announce(e.severity, e.text);
     e.fault = std::move(change);
     events.on_event(e);

@@ -40,6 +40,8 @@ Expected<std::vector<Expectation>> parse_expectations(std::string_view spec, con
 std::vector<ExpectationResult> check_expectations(const telemetry::TrafficSummary& summary,
                                                   const std::vector<Expectation>& expectations, double tolerance_pct) {
   std::vector<ExpectationResult> results;
+  const double records = static_cast<double>(summary.datagrams + summary.set_aside_records);
+  const double set_aside_pct = records > 0 ? 100.0 * static_cast<double>(summary.set_aside_records) / records : 0.0;
   for (const auto& e : expectations) {
     ExpectationResult r;
     r.expected = e;
@@ -51,9 +53,13 @@ std::vector<ExpectationResult> check_expectations(const telemetry::TrafficSummar
         r.measured_hz = m.rate_hz;
         count = m.count;
       }
-    r.ok = count >= 2 && r.measured_hz >= r.low_hz && r.measured_hz <= r.high_hz;
-    char buf[256];
-    if (count == 0) {
+    r.ok = count >= 2 && r.measured_hz >= r.low_hz && r.measured_hz <= r.high_hz && set_aside_pct <= kMaxSetAsidePct;
+    char buf[320];
+    if (set_aside_pct > kMaxSetAsidePct) {
+      std::snprintf(buf, sizeof buf, "%s: not judged: %llu of %.0f records (%.1f%%) set aside for stamps that jump, more than %g%% (measured %.1f Hz)",
+                    e.name.c_str(), static_cast<unsigned long long>(summary.set_aside_records), records, set_aside_pct,
+                    kMaxSetAsidePct, r.measured_hz);
+    } else if (count == 0) {
       std::snprintf(buf, sizeof buf, "%s: none received (expected %g Hz)", e.name.c_str(), e.rate_hz);
     } else if (count < 2) {
       std::snprintf(buf, sizeof buf, "%s: only 1 received (expected %g Hz)", e.name.c_str(), e.rate_hz);

@@ -29,7 +29,11 @@ struct ExpectationResult {
 /// Parses "ODOMETRY=250,HIL_SENSOR=250"; names are checked against `messages` (any case, or ids).
 Expected<std::vector<Expectation>> parse_expectations(std::string_view spec, const mavlink::MessageSet& messages);
 
-/// Judges each expectation against the measured rate_hz, within ±tolerance_pct percent.
+/// A log with more than this share of its records set aside (stamps that jumped) is not judged.
+inline constexpr double kMaxSetAsidePct = 1.0;
+
+/// Judges each expectation against the measured rate_hz, within ±tolerance_pct percent. Nothing
+/// passes on a log it cannot measure honestly: more than kMaxSetAsidePct of its records set aside.
 std::vector<ExpectationResult> check_expectations(const telemetry::TrafficSummary& summary,
                                                   const std::vector<Expectation>& expectations, double tolerance_pct);
 

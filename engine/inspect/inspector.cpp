@@ -66,9 +66,9 @@ Expected<std::unique_ptr<Inspector>> Inspector::open(const InspectConfig& config
       break;
     }
     case InspectConfig::Source::Tlog: {
-      auto reader = mavlink::TlogReader::open(config.tlog_path);
+      auto reader = mavlink::TlogReader::open(config.tlog_path, mavlink::TlogInput::FileOrPipe);
       if (!reader) return reader.error();
-      in->reader_.emplace(std::move(reader.value()));
+      in->reader_.emplace(std::move(reader.value()), &messages);
       break;
     }
   }
@@ -129,7 +129,12 @@ telemetry::TrafficSummary Inspector::summary() const {
     parser.truncated += reader_->stats().truncated;
     parser.garbage_bytes += reader_->stats().skipped_bytes;
   }
-  return stats_.summary(now_ns_, parser);
+  auto s = stats_.summary(now_ns_, parser);
+  if (reader_) {
+    s.segments = reader_->timeline().segments;
+    s.set_aside_records = reader_->timeline().set_aside_records;
+  }
+  return s;
 }
 
 Expected<Inspector::EndReason> Inspector::run(const std::atomic<bool>& stop, Observer& observer) {
@@ -177,22 +182,36 @@ Expected<Inspector::EndReason> Inspector::run_live(const std::atomic<bool>& stop
 }
 
 Expected<Inspector::EndReason> Inspector::run_tlog(const std::atomic<bool>& stop, Observer& observer) {
-  mavlink::TlogRecord rec;
+  // The log's time is checked as it is read (tlog_timeline.h): measured per segment, each record
+  // the timeline set aside counted, not measured. --duration counts measured log time.
+  reader_->reader().set_stop(&stop);
+  mavlink::TimedRecord timed;
   bool started = false;
-  int64_t end_ns = 0;
+  double elapsed_before_ns = 0;  // measured time of the segments before this one
+  int64_t segment_start_ns = 0;
   auto next_tick = Clock::now() + std::chrono::seconds(1);
   while (!stop.load()) {
-    if (!reader_->next(rec)) return EndReason::EndOfLog;
+    if (!reader_->next(timed)) return reader_->reader().stopped() ? EndReason::Stopped : EndReason::EndOfLog;
+    const mavlink::TlogRecord& rec = timed.record;
+    if (timed.unchecked) {  // its frame does not check: counted by the parser, its stamp ignored
+      stats_.on_datagram();
+      parser_.parse_datagram(rec.frame, [&](const mavlink::Frame& f) { handle(f, "tlog", now_ns_, observer); });
+      continue;
+    }
     // A log's clock is outside input: saturate rather than overflow (a corrupt stamp reads as ~2262).
     const int64_t t = rec.time_unix_us > static_cast<uint64_t>(INT64_MAX / 1000) ? INT64_MAX
                                                                                 : static_cast<int64_t>(rec.time_unix_us) * 1000;
     if (!started) {
       started = true;
       stats_.restart(t);
-      const double end = static_cast<double>(t) + config_.duration_s * 1e9;
-      end_ns = config_.duration_s > 0 && end < 9.2e18 ? static_cast<int64_t>(end) : INT64_MAX;
+      segment_start_ns = now_ns_ = t;
+    } else if (timed.new_segment) {
+      elapsed_before_ns += static_cast<double>(now_ns_) - static_cast<double>(segment_start_ns);
+      stats_.new_segment(now_ns_, t);
+      segment_start_ns = now_ns_ = t;
     }
-    if (t > end_ns) return EndReason::Duration;
+    if (config_.duration_s > 0 && elapsed_before_ns + static_cast<double>(t) - static_cast<double>(segment_start_ns) > config_.duration_s * 1e9)
+      return EndReason::Duration;
     now_ns_ = std::max(now_ns_, t);
     stats_.on_datagram();
     parser_.parse_datagram(rec.frame, [&](const mavlink::Frame& f) { handle(f, "tlog", t, observer); });

@@ -16,6 +16,7 @@
 #include "base/mavlink/frame_parser.h"
 #include "base/mavlink/message_set.h"
 #include "engine/mavlink/tlog.h"
+#include "engine/mavlink/tlog_timeline.h"
 #include "engine/net/udp_endpoint.h"
 #include "engine/telemetry/traffic_stats.h"
 
@@ -80,7 +81,7 @@ class Inspector {
   mavlink::FrameParser parser_;
   telemetry::TrafficStats stats_;
   std::optional<net::UdpEndpoint> endpoint_;
-  std::optional<mavlink::TlogReader> reader_;
+  std::optional<mavlink::TlogTimeline> reader_;
   std::optional<mavlink::TlogWriter> recorder_;
   uint64_t counted_ = 0;
   mavlink::FrameEncoder encoder_;

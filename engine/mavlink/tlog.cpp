@@ -1,5 +1,10 @@
 #include "engine/mavlink/tlog.h"
 
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
 
@@ -43,11 +48,28 @@ std::size_t frame_length_from_header(std::span<const uint8_t> bytes) {
   return 0;
 }
 
-Expected<TlogReader> TlogReader::open(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return Error::input("cannot read tlog '" + path + "': " + std::strerror(errno));
+void TlogReader::Closer::operator()(int* fd) const {
+  ::close(*fd);
+  delete fd;
+}
+
+Expected<TlogReader> TlogReader::open(const std::string& path, TlogInput input) {
+  // Non-blocking: opening a FIFO with no writer returns at once (it would wait for one), and reads
+  // wait in poll(), where `stop` is looked at.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return Error::input("cannot read tlog '" + path + "': " + std::strerror(errno));
   TlogReader r;
-  r.file_.reset(f);
+  r.fd_.reset(new int(fd));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) return Error::input("cannot read tlog '" + path + "': " + std::strerror(errno));
+  const bool regular = S_ISREG(st.st_mode), pipe = S_ISFIFO(st.st_mode);
+  if (!regular && !(pipe && input == TlogInput::FileOrPipe)) {
+    const char* what = S_ISDIR(st.st_mode) ? "a directory" : S_ISCHR(st.st_mode) ? "a character device" : S_ISBLK(st.st_mode) ? "a block device"
+                       : pipe ? "a pipe" : S_ISSOCK(st.st_mode) ? "a socket" : "not a regular file";
+    return Error::input("tlog '" + path + "' is " + std::string(what) + ", not a log file (" +
+                        (input == TlogInput::FileOrPipe ? "a regular file or a pipe" : "a regular file: it is read twice") + ")");
+  }
+  r.pipe_ = pipe;
   return r;
 }
 
@@ -58,10 +80,29 @@ bool TlogReader::fill(std::size_t need) {
     pos_ = 0;
   }
   while (!eof_ && buf_.size() < need) {
+    if (stop_ != nullptr && stop_->load()) {
+      stopped_ = eof_ = true;
+      break;
+    }
+    if (pipe_) {
+      // A FIFO whose writer has not come yet reads as the end; poll() waits for it (Linux reports
+      // POLLHUP only once a writer has come and gone), as `cat` waits in open().
+      pollfd p{*fd_, POLLIN, 0};
+      if (::poll(&p, 1, 100) <= 0) continue;
+    }
     uint8_t chunk[65536];
-    const std::size_t n = std::fread(chunk, 1, sizeof chunk, file_.get());
-    if (n == 0) eof_ = true;
-    buf_.insert(buf_.end(), chunk, chunk + n);
+    const ssize_t n = ::read(*fd_, chunk, sizeof chunk);
+    if (n > 0) {
+      buf_.insert(buf_.end(), chunk, chunk + n);
+    } else if (n == 0) {
+      eof_ = true;
+    } else if (errno == EAGAIN || errno == EWOULDBLOCK) {
+      // A pipe with nothing to read yet (a FIFO whose writer has not come or not written).
+      pollfd p{*fd_, POLLIN, 0};
+      (void)::poll(&p, 1, 100);
+    } else if (errno != EINTR) {
+      eof_ = true;  // a read error ends the log where it is
+    }
   }
   return buf_.size() >= need;
 }
@@ -73,6 +114,10 @@ bool TlogReader::next(TlogRecord& record) {
     if (len == 0) {  // not a timestamp followed by a frame: slide one byte and look again
       ++pos_;
       ++stats_.skipped_bytes;
+      if (stop_ != nullptr && stats_.skipped_bytes % 65536 == 0 && stop_->load()) {
+        stopped_ = eof_ = true;
+        return false;
+      }
       continue;
     }
     if (!fill(8 + len)) {  // the file ends inside this frame

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/common/expected.h"
+#include "base/common/json_nesting.h"
 #include "engine/model/vehicle_config.h"
 
 namespace hitl::model::config_fields {
@@ -227,6 +228,7 @@ class Writer {
 template <class Config, class Fields>
 Expected<Config> parse(std::string_view text, std::string_view source_name, Config config, Fields fields) {
   const std::string source(source_name);
+  if (auto depth = check_json_depth(text, source); !depth) return depth.error();
   json root;
   try {
     root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);

@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <memory>
 #include <optional>
 
 #include "base/contract/session_status.h"
@@ -11,6 +12,7 @@
 #include "base/mavlink/message_set.h"
 #include "base/mavlink/messages.h"
 #include "engine/mavlink/tlog.h"
+#include "engine/mavlink/tlog_timeline.h"
 
 namespace hitl::replay {
 namespace msg = mavlink::msg;
@@ -52,8 +54,10 @@ Expected<RecordedSession> load_recording(const std::string& path, uint64_t max_b
         if (f.is<msg::HilActuatorControls>() && !board_sysid) board_sysid = f.sysid;
       });
   }
-  auto reader = mavlink::TlogReader::open(path);
-  if (!reader) return reader.error().prefixed(name + ": ");
+  auto opened = mavlink::TlogReader::open(path);
+  if (!opened) return opened.error().prefixed(name + ": ");
+  // Its clock checked as it is read (tlog_timeline.h): a replay waits out the recorded gaps.
+  auto reader = std::make_unique<mavlink::TlogTimeline>(std::move(opened.value()));
   mavlink::FrameParser parser(messages);
   RecordedSession s;
   // To the board after the last step's datagram left (the session sends VIO and truth ODOMETRY
@@ -61,9 +65,10 @@ Expected<RecordedSession> load_recording(const std::string& path, uint64_t max_b
   // its HIL_SENSOR. Also what came before the first HIL_SENSOR.
   std::vector<OutgoingFrame> carried;
   bool datagram_left = true;
-  mavlink::TlogRecord record;
+  mavlink::TimedRecord timed;
+  const mavlink::TlogRecord& record = timed.record;
   uint64_t unparsed = 0;
-  while (reader->next(record)) {
+  while (reader->next(timed)) {
     bool parsed = false;
     parser.parse_datagram(record.frame, [&](const mavlink::Frame& f) {
       parsed = true;
@@ -115,6 +120,10 @@ Expected<RecordedSession> load_recording(const std::string& path, uint64_t max_b
     return Error::input(name + " is cut off or corrupt (" + std::to_string(stats.truncated) + " record(s) cut off at the end, " +
                         std::to_string(stats.skipped_bytes) + " bytes that are no record, " + std::to_string(unparsed) +
                         " records that are no valid frame): replay needs a whole recording");
+  if (const auto& t = reader->timeline(); t.segments > 1 || t.set_aside_records > 0)
+    return Error::input(name + "'s clock jumps (" + std::to_string(t.segments) + " segments, " + std::to_string(t.set_aside_records) +
+                        " records whose stamp jumped alone; a jump back, or ahead more than 60 s, starts a segment): "
+                        "replay needs one whole recording");
   if (s.steps.empty())
     return Error::input(name + " holds no HIL_SENSOR (" + std::to_string(s.frames) +
                         " frames): not a hitl sim recording (hitl sim --record FILE.tlog records one)");

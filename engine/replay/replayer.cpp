@@ -51,6 +51,7 @@ class Run {
         while (monotonic_s() < due_s && !stop.load()) {
           const double left_ms = (due_s - monotonic_s()) * 1000.0;
           if (hil_.wait_readable(static_cast<int>(std::clamp(left_ms, 0.0, 100.0)))) drain();
+          if (monotonic_s() - last_heard_s_ > config_.give_up_s) return silence(k);  // not waiting out a recorded gap
         }
       }
       current_step_ = static_cast<int64_t>(k);
@@ -58,10 +59,7 @@ class Run {
       ++result_.steps_sent;
       if (config_.lockstep) wait_answer(step.sensor_time_usec, stop);
       else drain();
-      if (monotonic_s() - last_heard_s_ > config_.give_up_s)
-        return Error::failed("the board at " + config_.target_ip + ":" + std::to_string(config_.hil_port) + " said nothing for " +
-                             std::to_string(static_cast<int>(config_.give_up_s)) + " s (step " + std::to_string(k) + " of " +
-                             std::to_string(session_.steps.size()) + "): is it running, and on that port?");
+      if (monotonic_s() - last_heard_s_ > config_.give_up_s) return silence(k);
       if (monotonic_s() >= next_progress_s) {
         next_progress_s += 1.0;
         on_progress(progress(k));
@@ -80,6 +78,12 @@ class Run {
   }
 
  private:
+  Error silence(std::size_t k) const {
+    return Error::failed("the board at " + config_.target_ip + ":" + std::to_string(config_.hil_port) + " said nothing for " +
+                         std::to_string(static_cast<int>(config_.give_up_s)) + " s (step " + std::to_string(k) + " of " +
+                         std::to_string(session_.steps.size()) + "): is it running, and on that port?");
+  }
+
   Status send_step(const RecordedStep& step) {
     for (const auto& f : step.frames) {
       if (f.to == Destination::Vio && !vio_) continue;

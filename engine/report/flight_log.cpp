@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 
 #include "base/contract/data_rates.h"
 #include "base/contract/session_status.h"
@@ -15,6 +16,7 @@
 #include "engine/frames/frames.h"
 #include "engine/mavlink/statustext.h"
 #include "engine/mavlink/tlog.h"
+#include "engine/mavlink/tlog_timeline.h"
 #include "engine/telemetry/px4_mode.h"
 
 namespace hitl::report {
@@ -134,13 +136,18 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   // Pass 1: the simulator's clock.
   Clock clock;
   std::optional<uint8_t> sim_sysid;
+  // Both passes read through the timeline (tlog_timeline.h): a record whose stamp jumped is set
+  // aside, never drawn.
   {
-    auto reader = mavlink::TlogReader::open(path);
-    if (!reader) return reader.error();
+    auto opened = mavlink::TlogReader::open(path);
+    if (!opened) return opened.error();
+    mavlink::TlogTimeline reader(std::move(opened.value()), &messages);
     mavlink::FrameParser parser(messages);
-    mavlink::TlogRecord r;
+    mavlink::TimedRecord timed;
+    const mavlink::TlogRecord& r = timed.record;
     bool first = true;
-    for (uint64_t n = 0; n < limits.max_records && reader->next(r); ++n) {
+    for (uint64_t n = 0; n < limits.max_records && reader.next(timed); ++n) {
+      if (timed.unchecked) continue;  // no frame that checks: its stamp says nothing
       if (first) clock.set_first_wall(r.time_unix_us);
       first = false;
       parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
@@ -154,8 +161,9 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   // --report through a session), hitl's simulator id, whose truth and status reach clients.
   const uint8_t sim_id = sim_sysid.value_or(kSimulatorSystemId);
   // Pass 2: the series.
-  auto reader = mavlink::TlogReader::open(path);
-  if (!reader) return reader.error();
+  auto opened = mavlink::TlogReader::open(path);
+  if (!opened) return opened.error();
+  auto reader = std::make_unique<mavlink::TlogTimeline>(std::move(opened.value()), &messages);
   mavlink::FrameParser parser(messages);
   FlightLog log;
   log.path = path;
@@ -184,17 +192,22 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     a.wall_us.push_back(wall_us);
   };
   double tracking_sum_sq = 0;
-  mavlink::TlogRecord r;
+  mavlink::TimedRecord timed;
+  const mavlink::TlogRecord& r = timed.record;
   std::optional<uint64_t> first_wall_us, last_wall_us;
   std::optional<double> first_t_s, last_t_s;
   bool cut = false;
   for (;;) {
     if (log.records >= limits.max_records) {
-      cut = reader->next(r);
+      cut = reader->next(timed);
       break;
     }
-    if (!reader->next(r)) break;
+    if (!reader->next(timed)) break;
     ++log.records;
+    if (timed.unchecked) {  // counted in the parser's errors; its stamp says nothing
+      parser.parse_datagram(r.frame, [](const mavlink::Frame&) {});
+      continue;
+    }
     const uint64_t wall_us = r.time_unix_us;
     const double t_s = clock.t_s(wall_us);
     if (!first_wall_us) first_wall_us = wall_us, first_t_s = t_s;
@@ -299,10 +312,19 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   std::stable_sort(log.events.begin(), log.events.end(), [](const auto& a, const auto& b) { return a.t_s < b.t_s; });
   if (log.frames == 0) return Error::input("'" + path + "' holds no MAVLink frame of a known message (is it a .tlog?)");
   log.skipped_bytes = reader->stats().skipped_bytes;
+  log.segments = reader->timeline().segments;
+  log.set_aside_records = reader->timeline().set_aside_records;
+  if (log.skipped_bytes > 0) log.skipped.push_back(std::to_string(log.skipped_bytes) + " bytes that were no timestamp + frame (corruption)");
+  if (log.parse_errors > 0) log.skipped.push_back(std::to_string(log.parse_errors) + " frames the parser rejected (checksum, unknown id)");
+  if (log.set_aside_records > 0)
+    log.skipped.push_back(std::to_string(log.set_aside_records) + " records set aside: their timestamp jumped and the next record did not confirm it");
+  if (log.segments > 1)
+    log.skipped.push_back("the order of the log's " + std::to_string(log.segments) +
+                          " segments (its clock jumped back, or ahead more than 60 s: logs joined): they share one time axis");
   log.parse_errors = parser.stats().crc_errors + parser.stats().unknown_ids;
   log.start_s = *first_t_s;
   log.duration_s = *last_t_s - *first_t_s;
-  log.wall_duration_s = static_cast<double>(*last_wall_us - *first_wall_us) * 1e-6;
+  log.wall_duration_s = std::max(0.0, static_cast<double>(*last_wall_us) - static_cast<double>(*first_wall_us)) * 1e-6;
   if (log.setpoint.size() == 0) log.setpoint = std::move(vehicle_setpoint);
   if (log.tracking_error_m.size() > 0) {
     TrackingSummary s;

@@ -73,6 +73,8 @@ struct FlightLog {
   uint64_t frames = 0;          ///< MAVLink frames in them
   uint64_t skipped_bytes = 0;   ///< corruption the reader stepped over
   uint64_t parse_errors = 0;    ///< frames dropped by the parser (CRC, unknown ids)
+  uint64_t segments = 0;        ///< stretches of the log's clock (more than 1: it jumped; engine/mavlink/tlog_timeline.h)
+  uint64_t set_aside_records = 0;  ///< records whose stamp jumped: not drawn
   bool simulated_time = false;  ///< t_s is the simulator's clock
   double start_s = 0;           ///< the first record's t_s
   double duration_s = 0;        ///< first to last record, in t_s
@@ -94,6 +96,7 @@ struct FlightLog {
   std::optional<bool> lockstep;           ///< the session's "sim_lockst"
   LoopLatencySeries loop_latency;
   std::vector<std::string> missing;       ///< what a report cannot draw from this log, in words
+  std::vector<std::string> skipped;       ///< what a damaged log holds that is not drawn, in words
 };
 
 inline constexpr std::array<const char*, 6> kEkfRatioNames = {"velocity", "horizontal position", "vertical position",

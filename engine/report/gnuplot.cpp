@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -60,7 +62,9 @@ std::string gnuplot_script(const std::vector<Plot>& plots, const std::vector<Eve
     const auto& plot = plots[p];
     for (std::size_t k = 0; k < plot.series.size(); ++k) {
       s << "$d" << p << "_" << k << " << EOD\n";
-      for (std::size_t i = 0; i < plot.series[k].x.size(); ++i) s << plot.series[k].x[i] << ' ' << plot.series[k].y[i] << '\n';
+      for (std::size_t i = 0; i < plot.series[k].x.size(); ++i)
+        if (std::isfinite(plot.series[k].x[i]) && std::isfinite(plot.series[k].y[i]))  // a damaged log's NaN is not drawn
+          s << plot.series[k].x[i] << ' ' << plot.series[k].y[i] << '\n';
       s << "EOD\n";
     }
   }
@@ -90,8 +94,21 @@ std::string gnuplot_script(const std::vector<Plot>& plots, const std::vector<Eve
   return s.str();
 }
 
+namespace {
+
+/// gnuplot's complaint, as one short line: its last non-empty line.
+std::string last_line(const std::string& text) {
+  std::string line, last;
+  std::istringstream in(text);
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t^") != std::string::npos) last = line;
+  return last.size() > 200 ? last.substr(0, 200) + "..." : last;
+}
+
+}  // namespace
+
 Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers,
-                                               const GnuplotOptions& options) {
+                                               const GnuplotOptions& options, std::vector<std::string>* failed) {
   const auto gnuplot = net::find_on_path("gnuplot");
   if (!gnuplot)
     return Error::unavailable("gnuplot is not installed (Debian/Ubuntu: apt-get install gnuplot-nox); hitl report draws its plots with it");
@@ -106,17 +123,37 @@ Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, c
     }
   } cleanup{dir};
   const std::string script_path = dir + "/report.gp";
-  {
-    std::ofstream script(script_path);
-    script << gnuplot_script(plots, markers, dir, options);
-    if (!script.flush()) return Error::failed("cannot write " + script_path);
+  // Draws `some` of the plots in one run; gnuplot's exit code and complaint.
+  auto draw = [&](const std::vector<Plot>& some) -> Expected<std::pair<int, std::string>> {
+    {
+      std::ofstream script(script_path, std::ios::trunc);
+      script << gnuplot_script(some, markers, dir, options);
+      if (!script.flush()) return Error::failed("cannot write " + script_path);
+    }
+    auto ran = net::run_program(*gnuplot, {script_path}, options.timeout_ms);
+    if (!ran) return ran.error();
+    return std::pair{ran->exit_code, ran->err};
+  };
+  auto all = draw(plots);
+  if (!all) return all.error();
+  std::vector<bool> drawn(plots.size(), all->first == 0);
+  if (all->first != 0) {  // one plot gnuplot cannot draw stops the script: draw each on its own
+    for (std::size_t i = 0; i < plots.size(); ++i) {
+      auto one = draw({plots[i]});
+      if (!one) return one.error();
+      drawn[i] = one->first == 0;
+      if (!drawn[i] && failed != nullptr) failed->push_back(plots[i].title + ": " + last_line(one->second));
+    }
+    if (std::find(drawn.begin(), drawn.end(), true) == drawn.end())
+      return Error::failed("gnuplot failed (exit " + std::to_string(all->first) + "): " + all->second);
   }
-  auto ran = net::run_program(*gnuplot, {script_path}, options.timeout_ms);
-  if (!ran) return ran.error();
-  if (ran->exit_code != 0) return Error::failed("gnuplot failed (exit " + std::to_string(ran->exit_code) + "): " + ran->err);
   std::vector<std::string> svgs;
-  for (const auto& plot : plots) {
-    auto svg = read_bounded_file(dir + "/" + plot.id + ".svg", "gnuplot's " + plot.id + ".svg", kMaxSvgBytes);
+  for (std::size_t i = 0; i < plots.size(); ++i) {
+    if (!drawn[i]) {
+      svgs.emplace_back();
+      continue;
+    }
+    auto svg = read_bounded_file(dir + "/" + plots[i].id + ".svg", "gnuplot's " + plots[i].id + ".svg", kMaxSvgBytes);
     if (!svg) return svg.error();
     svgs.push_back(std::move(svg.value()));
   }

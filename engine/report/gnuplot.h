@@ -22,8 +22,11 @@ struct GnuplotOptions {
 std::string gnuplot_script(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers, const std::string& dir,
                            const GnuplotOptions& options = {});
 
-/// Each plot's SVG text, in order. An Error when gnuplot is not installed, fails or takes too long.
+/// Each plot's SVG text, in order. When gnuplot fails on the whole script (a damaged log's series),
+/// each plot is drawn on its own: one gnuplot cannot draw has an empty SVG and a line in `failed`
+/// ("altitude: all points y value undefined!"). An Error when gnuplot is not installed, cannot run,
+/// takes too long, or draws no plot at all.
 Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers,
-                                               const GnuplotOptions& options = {});
+                                               const GnuplotOptions& options = {}, std::vector<std::string>* failed = nullptr);
 
 }  // namespace hitl::report

@@ -70,6 +70,11 @@ std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, co
   if (log.skipped_bytes > 0 || log.parse_errors > 0)
     row("damage", std::to_string(log.skipped_bytes) + " bytes skipped, " + std::to_string(log.parse_errors) + " frames rejected");
   h << "</table>\n";
+  if (!log.skipped.empty()) {
+    h << "<h2>What this log had that is not drawn</h2>\n<ul class=\"lacks\" id=\"skipped\">\n";
+    for (const auto& m : log.skipped) h << "<li>" << html_escaped(m) << "</li>\n";
+    h << "</ul>\n";
+  }
   if (!log.missing.empty()) {
     h << "<h2>What this log lacks</h2>\n<ul class=\"lacks\" id=\"lacks\">\n";
     for (const auto& m : log.missing) h << "<li>" << html_escaped(m) << "</li>\n";

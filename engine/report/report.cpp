@@ -15,15 +15,22 @@ Expected<ReportResult> write_report(const std::string& tlog_path, const std::str
   const double start_s = monotonic_s();
   auto log = read_flight_log(tlog_path);
   if (!log) return log.error();
-  const auto plots = plots_of(*log);
-  auto svgs = render_svgs(plots, event_markers(*log));
-  if (!svgs) return svgs.error();
-  const std::string html = report_html(*log, plots, *svgs);
+  const auto all_plots = plots_of(*log);
+  std::vector<std::string> failed;
+  auto all_svgs = render_svgs(all_plots, event_markers(*log), {}, &failed);
+  if (!all_svgs) return all_svgs.error();
+  // What a damaged log had that the page does not show: set aside while reading, or not drawn.
+  std::vector<Plot> plots;
+  std::vector<std::string> svgs;
+  for (std::size_t i = 0; i < all_plots.size(); ++i)
+    if (!(*all_svgs)[i].empty()) plots.push_back(all_plots[i]), svgs.push_back((*all_svgs)[i]);
+  for (const auto& f : failed) log->skipped.push_back("the plot " + f);
+  const std::string html = report_html(*log, plots, svgs);
   std::ofstream out(html_path, std::ios::binary | std::ios::trunc);
   if (!out) return Error::input("cannot write the report '" + html_path + "': " + std::strerror(errno));
   out << html;
   if (!out.flush()) return Error::failed("writing the report '" + html_path + "' failed: " + std::strerror(errno));
-  return ReportResult{html_path, html.size(), plots.size(), monotonic_s() - start_s, log->missing};
+  return ReportResult{html_path, html.size(), plots.size(), monotonic_s() - start_s, log->missing, log->skipped};
 }
 
 }  // namespace hitl::report

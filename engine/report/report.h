@@ -15,6 +15,7 @@ struct ReportResult {
   std::size_t plots = 0;
   double seconds = 0;                  ///< wall time to read, draw and write
   std::vector<std::string> missing;    ///< what the log lacks (FlightLog::missing)
+  std::vector<std::string> skipped;    ///< what a damaged log had that is not drawn (FlightLog::skipped, plots gnuplot could not draw)
 };
 
 /// Reads `tlog_path`, draws it and writes the page to `html_path`.

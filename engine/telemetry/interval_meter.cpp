@@ -37,8 +37,9 @@ double bucket_value(std::size_t b) {
 
 void IntervalMeter::arrival(int64_t t_ns) {
   ++arrivals_;
-  if (arrivals_ == 1) {
-    first_ns_ = last_ns_ = t_ns;
+  if (++segment_arrivals_ == 1) {
+    if (arrivals_ == 1) first_ns_ = t_ns;
+    segment_first_ns_ = last_ns_ = t_ns;
     return;
   }
   if (t_ns < last_ns_) return;
@@ -54,6 +55,22 @@ void IntervalMeter::arrival(int64_t t_ns) {
   min_ = std::min(min_, gap_us);
   max_ = std::max(max_, gap_us);
   count_bucket(bucket_of(gap_ns / 1000 * 16 + gap_ns % 1000 * 16 / 1000));
+}
+
+void IntervalMeter::end_segment(int64_t end_ns) {
+  if (segment_arrivals_ == 0) return;
+  closed_intervals_ += segment_arrivals_ - 1;
+  closed_span_ns_ += static_cast<double>(std::max(end_ns, last_ns_)) - static_cast<double>(segment_first_ns_);
+  segment_arrivals_ = 0;
+}
+
+double IntervalMeter::rate_hz(int64_t now_ns) const {
+  double intervals = static_cast<double>(closed_intervals_), span_ns = closed_span_ns_;
+  if (segment_arrivals_ > 0) {
+    intervals += static_cast<double>(segment_arrivals_ - 1);
+    span_ns += static_cast<double>(std::max(now_ns, last_ns_)) - static_cast<double>(segment_first_ns_);
+  }
+  return intervals >= 1 && span_ns > 0 ? intervals / (span_ns * 1e-9) : 0.0;
 }
 
 void IntervalMeter::count_bucket(std::size_t b) {

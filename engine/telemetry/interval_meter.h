@@ -25,6 +25,12 @@ class IntervalMeter {
   /// Records an arrival at `t_ns`; the first arrival only starts the clock. Arrivals that go back
   /// in time (clock steps) are not counted as gaps.
   void arrival(int64_t t_ns);
+  /// Ends the current segment of the stream at `end_ns` (a log's stretch, tlog_timeline.h): the next
+  /// arrival starts a new one, with no gap measured across the two.
+  void end_segment(int64_t end_ns);
+  /// (arrivals - 1) per second, over the segments so far, each from its first arrival to its end
+  /// (the current one to `now_ns`): 0 before two arrivals in one segment.
+  double rate_hz(int64_t now_ns) const;
   GapSummary summary() const;
   int64_t first_ns() const { return first_ns_; }
   int64_t last_ns() const { return last_ns_; }
@@ -37,6 +43,10 @@ class IntervalMeter {
   double percentile(double q) const;
 
   uint64_t arrivals_ = 0;
+  uint64_t segment_arrivals_ = 0;
+  int64_t segment_first_ns_ = 0;
+  uint64_t closed_intervals_ = 0;  ///< arrivals - 1 of each segment ended
+  double closed_span_ns_ = 0;      ///< first arrival to end of each segment ended
   int64_t first_ns_ = 0;
   int64_t last_ns_ = 0;
   uint64_t gaps_ = 0;

@@ -12,6 +12,8 @@ nlohmann::json to_json(const TrafficSummary& s) {
   j["parse_errors"] = s.parser.parse_errors;
   j["garbage_bytes"] = s.parser.garbage_bytes;
   j["truncated"] = s.parser.truncated;
+  j["segments"] = s.segments;
+  j["set_aside_records"] = s.set_aside_records;
   j["unknown"] = s.parser.unknown_ids;
   j["unverified"] = s.parser.unverified;
   j["untracked_id_frames"] = s.untracked_id_frames;

@@ -35,6 +35,14 @@ TrafficStats::Bound TrafficStats::on_frame(const mavlink::Frame& frame, const st
   return hit;
 }
 
+void TrafficStats::new_segment(int64_t end_ns, int64_t start_ns) {
+  closed_duration_ns_ += std::max(0.0, static_cast<double>(end_ns) - static_cast<double>(start_ns_));
+  for (auto& [id, m] : meters_) m.gaps.end_segment(end_ns);
+  for (auto& [key, tracker] : sources_) tracker.restart();  // a joined log's sequence starts over
+  ++segments_;
+  start_ns_ = window_start_ns_ = start_ns;
+}
+
 void TrafficStats::roll(int64_t now_ns) {
   const double window_s = static_cast<double>(now_ns - window_start_ns_) * 1e-9;
   for (auto& [id, m] : meters_) {
@@ -46,7 +54,8 @@ void TrafficStats::roll(int64_t now_ns) {
 
 TrafficSummary TrafficStats::summary(int64_t now_ns, const mavlink::ParserStats& parser) const {
   TrafficSummary s;
-  s.duration_s = std::max(0.0, static_cast<double>(now_ns - start_ns_) * 1e-9);
+  s.duration_s = (closed_duration_ns_ + std::max(0.0, static_cast<double>(now_ns) - static_cast<double>(start_ns_))) * 1e-9;
+  s.segments = segments_;
   s.frames = frames_;
   s.datagrams = datagrams_;
   s.untracked_id_frames = untracked_id_frames_;
@@ -60,8 +69,7 @@ TrafficSummary TrafficStats::summary(int64_t now_ns, const mavlink::ParserStats&
     ms.bytes = m.bytes;
     ms.gap = m.gaps.summary();
     ms.recent_rate_hz = m.recent_rate_hz;
-    const double span_s = static_cast<double>(std::max(now_ns, m.gaps.last_ns()) - m.gaps.first_ns()) * 1e-9;
-    ms.rate_hz = (m.count >= 2 && span_s > 0) ? static_cast<double>(m.count - 1) / span_s : 0.0;
+    ms.rate_hz = m.gaps.rate_hz(now_ns);
     ms.bytes_per_s = s.duration_s > 0 ? static_cast<double>(m.bytes) / s.duration_s : 0.0;
     s.messages.push_back(std::move(ms));
   }

@@ -45,6 +45,8 @@ struct TrafficSummary {
   uint64_t untracked_id_frames = 0;      ///< frames of ids past kMaxMessageIds: counted, not in `messages`
   uint64_t untracked_source_frames = 0;  ///< frames of senders past kMaxSources: counted, not in `sources`
   mavlink::ParserStats parser;
+  uint64_t segments = 1;            ///< stretches measured on their own (a tlog's, tlog_timeline.h; live: 1)
+  uint64_t set_aside_records = 0;   ///< a tlog's records whose stamp jumped, not measured
   std::vector<MessageSummary> messages;  ///< by id
   std::vector<SourceSummary> sources;
 
@@ -61,10 +63,13 @@ class TrafficStats {
   enum class Bound { None, MessageIds, Sources };
   /// Counts a frame; returns which table bound this frame hit for the first time (None otherwise).
   Bound on_frame(const mavlink::Frame& frame, const std::string& source, int64_t t_ns);
+  /// Ends the measured stretch at `end_ns` and starts another at `start_ns` (a tlog's next segment):
+  /// rates, durations and sequences count within segments, never across the join.
+  void new_segment(int64_t end_ns, int64_t start_ns);
   /// Closes the current rate window at `now_ns` (recent_rate_hz covers it) and opens the next.
   void roll(int64_t now_ns);
 
-  /// A snapshot; `parser` is the parser's own counters, copied in.
+  /// A snapshot at `now_ns` (the current segment's end so far); `parser` is the parser's own counters, copied in.
   TrafficSummary summary(int64_t now_ns, const mavlink::ParserStats& parser) const;
 
  private:
@@ -76,8 +81,10 @@ class TrafficStats {
     double recent_rate_hz = 0;
     IntervalMeter gaps;
   };
-  int64_t start_ns_;
+  int64_t start_ns_;  ///< the current segment's
   int64_t window_start_ns_;
+  double closed_duration_ns_ = 0;  ///< the segments before the current one
+  uint64_t segments_ = 1;
   uint64_t frames_ = 0;
   uint64_t datagrams_ = 0;
   uint64_t untracked_id_frames_ = 0;

@@ -1,4 +1,5 @@
 #include "base/common/bounded_read.h"
+#include "base/common/json_nesting.h"
 #include "engine/vehicle/trajectory.h"
 
 #include <nlohmann/json.hpp>
@@ -34,6 +35,7 @@ std::string compact(double v) {
 
 Expected<Trajectory> Trajectory::parse(std::string_view text, std::string_view source) {
   const std::string src(source);
+  if (auto depth = check_json_depth(text, src); !depth) return depth.error();
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);

@@ -1,4 +1,5 @@
 #include "base/common/bounded_read.h"
+#include "base/common/json_nesting.h"
 #include "target/vio-server/vio_server_config.h"
 
 #include <arpa/inet.h>
@@ -49,6 +50,7 @@ Expected<VioServerConfig> apply(const nlohmann::json& doc, VioServerConfig confi
 }
 
 Expected<VioServerConfig> parse_with(std::string_view text, std::string_view source, VioServerConfig base) {
+  if (auto depth = check_json_depth(text, std::string(source)); !depth) return depth.error();
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);

@@ -284,6 +284,38 @@ TEST(BoardNetworkE2E, DashIWithoutAdbConnectsOverTheNetworkAndRunsThereOrSaysHow
   EXPECT_EQ(usb.find_call("-s FAKE0001 shell systemctl stop voxl-vision-hub"), static_cast<int>(usb.calls().size()) - 1);
 }
 
+// Issue 34: a dry run over the network touches nothing, `adb connect` included, and the address is
+// checked before adb runs at all.
+TEST(BoardNetworkE2E, DryRunWithDashINeverRunsAdbConnectAndChecksTheAddress) {
+  {
+    test::FakeAdb fake({.devices = "127.0.0.1:5555 device"});
+    fake.make_board(kShippedVisionHub);
+    const auto r = test::run_hitl({"board", "stop", "--dry-run", "-i", "127.0.0.1"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("dry run: nothing was changed on the board"), std::string::npos) << r.out;
+    EXPECT_EQ(fake.find_call("connect"), -1) << "a dry run ran adb connect";
+    EXPECT_NE(fake.find_call("-s 127.0.0.1:5555 shell"), -1) << "the survey reads through the connected device";
+  }
+  {
+    test::FakeAdb fake({.devices = "FAKE0001 device"});
+    const auto r = test::run_hitl({"board", "start", "--dry-run", "-i", "127.0.0.1"});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("a dry run does not run `adb connect 127.0.0.1:5555` (it changes nothing), and adb has no device 127.0.0.1:5555 connected"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(fake.find_call("connect"), -1);
+  }
+  {
+    test::FakeAdb fake({.devices = "FAKE0001 device"});
+    for (const char* bad : {"no such host.invalid", "192.168.1.1;reboot"}) {
+      const auto r = test::run_hitl({"board", "stop", "--dry-run", "-i", bad});
+      EXPECT_EQ(r.exit_code, 2) << bad << r.err;
+      EXPECT_NE(r.err.find("-i (the board's address): "), std::string::npos) << r.err;
+    }
+    EXPECT_TRUE(fake.calls().empty()) << fake.calls().front();
+  }
+}
+
 TEST_F(BoardE2E, InstallWithoutThisBuildsPackagesNamesTheFileItLookedFor) {
   const auto r = board({"install", "--packages", "/nonexistent"});
   EXPECT_EQ(r.exit_code, 2);

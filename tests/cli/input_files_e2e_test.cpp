@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tests/support/process.h"
+#include "tests/support/tools.h"
 
 namespace hitl {
 namespace {
@@ -69,6 +70,38 @@ TEST(InputFilesE2E, NumbersPastADoublesRangeAreAnErrorNotAnAbort) {
     auto r = test::run_hitl(c, 30s);
     EXPECT_EQ(r.exit_code, 2) << c[2] << r.err;
     EXPECT_NE(r.err.find("number overflow"), std::string::npos) << c[2] << r.err;
+  }
+}
+
+// Issue 34: scenario files that crashed or were accepted and never fired. Each is refused before
+// anything runs, exit 2 (an input error), naming the file and the problem.
+TEST(InputFilesE2E, HostileScenariosAreRefusedNotACrash) {
+  const auto dir = test::temp_dir();
+  // An event nested 70,000 arrays deep: SIGSEGV building the error text before.
+  {
+    std::ofstream deep(dir + "/deep.json");
+    deep << R"({"events": [)" << std::string(70000, '[') << std::string(70000, ']') << "]}";
+  }
+  // 1,100 stacked motor:0,2 from t=0: multiplied to 2^1100 before.
+  {
+    std::ofstream stacked(dir + "/stacked.json");
+    stacked << R"({"events": [)";
+    for (int i = 0; i < 1100; ++i) stacked << (i ? "," : "") << R"({"at_s": 0, "fault": "motor", "args": [0, 2]})";
+    stacked << "]}";
+  }
+  const std::string data = test::source_path("tests/data/hostile/");
+  const std::pair<std::string, std::string> cases[] = {
+      {dir + "/deep.json", "is nested deeper than 32 levels"},
+      {data + "scenario-1e400.json", "number overflow"},
+      {data + "scenario-cycle.json", "events 'a', 'b', 'c' wait on each other ('a' after 'c', 'b' after 'a', 'c' after 'b'): none would start"},
+      {dir + "/stacked.json", "at most 64 faults can be active at once; 1100 could be at t=0 s"},
+  };
+  for (const auto& [path, message] : cases) {
+    auto r = test::run_hitl({"sim", "--scenario", path, "--duration", "1"}, 30s);
+    EXPECT_EQ(r.exit_code, 2) << path << r.err;
+    EXPECT_NE(r.err.find("--scenario: scenario '" + path + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << path << r.err;
+    EXPECT_LT(r.err.size(), 2000u) << "the message stays short: " << r.err.substr(0, 300);
   }
 }
 
