@@ -61,8 +61,8 @@ TEST(FaultMenu, ListsTheActiveFaultsFirstThenEveryFaultByGroup) {
     EXPECT_EQ(rows[i].fault->group, group) << rows[i].fault->name;
     EXPECT_TRUE(names.insert(rows[i].fault->name).second);
   }
-  EXPECT_EQ(headings, (std::vector<std::string>{"Vehicle", "IMU", "Mag", "Baro", "GPS", "VIO", "Environment", "HIL link",
-                                                "VIO link", "Board"}));
+  EXPECT_EQ(headings, (std::vector<std::string>{"Vehicle", "IMU", "Mag", "Baro", "GPS", "Optional sensors", "VIO", "Environment",
+                                                "HIL link", "VIO link", "Board"}));
   EXPECT_EQ(names.size(), faults::fault_catalogue().size());
   // The selection starts on the first active fault; without any, on the first fault.
   EXPECT_EQ(menu.selected(active), 1);
