@@ -124,7 +124,7 @@ TEST(Rangefinder, OffByDefaultOnItsOwnScheduleWhenOn) {
     }
   }
   EXPECT_EQ(off_samples, 0);
-  EXPECT_EQ(on_samples, 100);  // 100 Hz
+  EXPECT_EQ(on_samples, 101);  // 100 Hz: at 4 ms, then 10, 20, ... 1000 ms
   EXPECT_DOUBLE_EQ(first_s, 0.004);  // not before the first IMU period, as the other sensors
 }
 
