@@ -21,7 +21,15 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   auto mc = model::Multicopter::create(vehicle, config.world, config.seed);
   if (!mc) return mc.error();
   s.model = std::move(mc.value());
-  s.sensors.emplace(vehicle, config.world, config.seed);
+  s.sensors.emplace(vehicle, config.world, config.seed,
+                    config.noise ? config.sensor_units : sensors::without_noise(config.sensor_units));
+  for (const auto& f : config.faults) {  // a sensor unit's fault acts on its unit: refused while it is off
+    if (f.kind != faults::FaultKind::SensorUnit) continue;
+    const std::string unit = sensors::unit_infos()[sensors::unit_fault_infos()[f.unit_fault].unit].name;
+    if (!sensors::unit_enabled(config.sensor_units, sensors::unit_fault_infos()[f.unit_fault].unit))
+      return Error::usage("fault " + f.name() + ": the " + unit + " is off; turn it on with --" + unit + " (or \"enabled\": true in "
+                          "the vehicle file's sensors." + unit + ")");
+  }
   s.rest_altitude_m = s.model->state().p_ENU_m.z();
   if (!(config.vio_rate_hz > 0)) return Error::input("the VIO rate (vio_rate_hz) must be > 0");
   if (!(config.truth_rate_hz >= 0)) return Error::input("the truth rate (truth_rate_hz) must be >= 0 (0: no truth to clients)");

@@ -40,7 +40,7 @@ Status Session::Impl::step(EventSink& events) {
   touchdowns.observe(state);
   apply_faults(events);
   // Sensors due at this time, with the active sensor faults.
-  auto frame = sensors->sample_due(state);
+  auto frame = sensors->sample_due(state, fault_schedule.active().units);
   sensor_faults->apply(fault_schedule.active(), sim_time_s(), frame, state.rotor_speed_rad_s);
   say_imu_saturated(events);
   // Messages, flushed as one datagram to the flight stack; then VIO and truth.
@@ -137,6 +137,8 @@ void Session::Impl::send_messages(const sensors::SensorFrame& frame, uint64_t t_
     stack->send(make_hil_gps(*frame.gps, t_us));
     paths->on_hil_gps(sent_s);
   }
+  // The sensor units' messages (DISTANCE_SENSOR, ...), each as its unit encodes it.
+  sensors->units().send(frame.units, t_us, [&](const auto& message) { stack->send(message); });
   if (pilot) fly_pilot(model->state(), events);
   if (sim_time_s() + 1e-9 >= next_heartbeat_s) {
     next_heartbeat_s += 1.0;
