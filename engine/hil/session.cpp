@@ -25,10 +25,8 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
                     config.noise ? config.sensor_units : sensors::without_noise(config.sensor_units));
   for (const auto& f : config.faults) {  // a sensor unit's fault acts on its unit: refused while it is off
     if (f.kind != faults::FaultKind::SensorUnit) continue;
-    const std::string unit = sensors::unit_infos()[sensors::unit_fault_infos()[f.unit_fault].unit].name;
-    if (!sensors::unit_enabled(config.sensor_units, sensors::unit_fault_infos()[f.unit_fault].unit))
-      return Error::usage("fault " + f.name() + ": the " + unit + " is off; turn it on with --" + unit + " (or \"enabled\": true in "
-                          "the vehicle file's sensors." + unit + ")");
+    if (const auto off = sensors::unit_off_for_fault(config.sensor_units, f.unit_fault); !off.empty())
+      return Error::usage("fault " + f.name() + ": " + off);
   }
   s.rest_altitude_m = s.model->state().p_ENU_m.z();
   if (!(config.vio_rate_hz > 0)) return Error::input("the VIO rate (vio_rate_hz) must be > 0");

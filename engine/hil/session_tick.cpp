@@ -73,6 +73,14 @@ void Session::Impl::apply_faults(EventSink& events) {
   }
   std::vector<faults::FaultChange> cleared;
   for (auto& r : requests) {
+    if (r.start && r.start->kind == faults::FaultKind::SensorUnit) {  // started by hand on a unit that is off: said, not started
+      if (const auto off = sensors::unit_off_for_fault(config.sensor_units, r.start->unit_fault); !off.empty()) {
+        const SessionEvent e{Severity::Warning, "fault " + r.start->name() + " not started: " + off, std::nullopt};
+        services->announce(e.severity, e.text);
+        events.on_event(e);
+        continue;
+      }
+    }
     if (r.start) fault_schedule.start_now(std::move(*r.start));
     else for (auto& c : fault_schedule.clear(r.clear_name, sim_time_s())) cleared.push_back(std::move(c));
   }

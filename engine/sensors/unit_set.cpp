@@ -38,6 +38,13 @@ const std::vector<UnitFaultInfo>& unit_fault_infos() {
   return infos;
 }
 
+std::string unit_off_for_fault(const UnitConfigs& configs, std::size_t fault) {
+  const std::size_t unit = unit_fault_infos().at(fault).unit;
+  if (unit_enabled(configs, unit)) return "";
+  const std::string name = unit_infos()[unit].name;
+  return "the " + name + " is off; turn it on with --" + name + " (or \"enabled\": true in the vehicle file's sensors." + name + ")";
+}
+
 void fold_unit_fault(UnitFaults& active, std::size_t fault, const std::vector<double>& args, double started_s, double t_s) {
   std::size_t first = 0;  // the flat index of this unit's first fault
   for_each_unit([&](auto i) {

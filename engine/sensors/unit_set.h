@@ -75,6 +75,9 @@ struct UnitFaultInfo {
   const char* meaning = "";
 };
 const std::vector<UnitFaultInfo>& unit_fault_infos();
+/// "" when fault `fault`'s unit is on, else why it cannot act: "the rangefinder is off; turn it on
+/// with --rangefinder (...)".
+std::string unit_off_for_fault(const UnitConfigs& configs, std::size_t fault);
 /// Adds fault `fault` (of unit_fault_infos()) with its args, active since started_s, to `active`.
 void fold_unit_fault(UnitFaults& active, std::size_t fault, const std::vector<double>& args, double started_s, double t_s);
 
