@@ -105,13 +105,13 @@ TEST(SimRangefinderE2E, FromTheVehicleFileAtItsRateNoReturnReportsOutOfRange) {
       EXPECT_EQ(m.signal_quality, 1);
     } else {
       EXPECT_EQ(m.signal_quality, 100);
-      EXPECT_NEAR(m.current_distance, 18, 10) << m.time_boot_ms;  // at rest: the mount ~18 cm up, sigma 2.5 cm
+      EXPECT_NEAR(m.current_distance, 17, 10) << m.time_boot_ms;  // at rest: the mount ~17 cm up, sigma 2.5 cm
       sum_cm += m.current_distance;
       ++resting;
     }
   }
   ASSERT_GT(resting, 90);
-  EXPECT_NEAR(sum_cm / resting, 18, 1.5) << "the mean at rest";
+  EXPECT_NEAR(sum_cm / resting, 17, 1.0) << "the mean at rest";
 }
 
 TEST(SimRangefinderE2E, AFaultOfAUnitThatIsOffIsRefused) {
