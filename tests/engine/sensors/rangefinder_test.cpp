@@ -3,6 +3,7 @@
 // vehicle file.
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -174,6 +175,45 @@ TEST(VehicleFile, ListsEveryUnitKey) {
                         "sensors.rangefinder.fov_deg", "sensors.rangefinder.position_FLU_m"})
     EXPECT_NE(std::find(keys.begin(), keys.end(), k), keys.end()) << k;
 }
+
+// The SensorUnit concept is what makes a forgotten part a compile error: a unit with every part
+// satisfies it, and the same unit without any one part does not (each static_assert below is a
+// test that runs when this file compiles).
+namespace parts {
+struct Sample {};
+struct Faults {};
+struct Config {
+  bool enabled = false;
+  double rate_hz = 1.0;
+};
+template <bool kMessage = true, bool kFaults = true, bool kCheck = true, bool kApply = true>
+struct Unit {
+  using Sample = parts::Sample;
+  using Faults = parts::Faults;
+  using Config = parts::Config;
+  static constexpr const char* kName = "unit";
+  static constexpr const char* kSummary = "a unit";
+  template <class V>
+  static void fields(V& v, Config& c) { v.boolean("enabled", c.enabled); }
+  static std::string check(const Config&) requires kCheck { return ""; }
+  static Config without_noise(Config c) { return c; }
+  static const std::vector<UnitFault<Faults>>& faults() requires kFaults {
+    static const std::vector<UnitFault<Faults>> none;
+    return none;
+  }
+  Unit(const Config&, const model::WorldConfig&, std::uint64_t) {}
+  Sample sample(const model::VehicleState&, double) { return {}; }
+  void reset() {}
+  void apply(const Faults&, Sample&) requires kApply {}
+  mavlink::msg::DistanceSensor message(const Sample&, std::uint64_t) const requires kMessage { return {}; }
+};
+}  // namespace parts
+static_assert(SensorUnit<Rangefinder>);
+static_assert(SensorUnit<parts::Unit<>>);
+static_assert(!SensorUnit<parts::Unit<false, true, true, true>>, "no wire encoding");
+static_assert(!SensorUnit<parts::Unit<true, false, true, true>>, "no fault table");
+static_assert(!SensorUnit<parts::Unit<true, true, false, true>>, "no config check");
+static_assert(!SensorUnit<parts::Unit<true, true, true, false>>, "no fault application");
 
 }  // namespace
 }  // namespace hitl::sensors
