@@ -27,7 +27,7 @@ Expected<VehicleFile> parse_vehicle_file(std::string_view json_text, std::string
 Expected<VehicleFile> load_vehicle_file(const std::filesystem::path& file);
 /// The complete file, the units' sections included.
 std::string to_json_text(const VehicleFile& file);
-/// "sensors.rangefinder.enabled", ...: every unit's keys (the docs test checks docs/engine.md has them).
+/// "sensors.rangefinder.enabled", ...: every unit's keys (tests/engine/sensors checks docs/engine.md lists them).
 std::vector<std::string> unit_keys();
 
 }  // namespace hitl::sensors

@@ -2,7 +2,9 @@
 // limits, its noise, its faults, its DISTANCE_SENSOR, its schedule in the suite and its keys in the
 // vehicle file.
 #include <cmath>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -174,6 +176,15 @@ TEST(VehicleFile, ListsEveryUnitKey) {
                         "sensors.rangefinder.max_distance_m", "sensors.rangefinder.noise_m", "sensors.rangefinder.noise_fraction",
                         "sensors.rangefinder.fov_deg", "sensors.rangefinder.position_FLU_m"})
     EXPECT_NE(std::find(keys.begin(), keys.end(), k), keys.end()) << k;
+}
+
+// docs/engine.md's vehicle table has every unit's key (a new unit's keys must be documented).
+TEST(VehicleFile, EveryUnitKeyIsInTheEngineDocs) {
+  std::ifstream in(std::string(HITL_SOURCE_DIR) + "/docs/engine.md");
+  ASSERT_TRUE(in) << "docs/engine.md";
+  std::stringstream text;
+  text << in.rdbuf();
+  for (const auto& key : unit_keys()) EXPECT_NE(text.str().find("| `" + key + "` |"), std::string::npos) << key;
 }
 
 // The SensorUnit concept is what makes a forgotten part a compile error: a unit with every part
