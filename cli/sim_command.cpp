@@ -21,6 +21,7 @@
 #include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
 #include "engine/model/x500_defaults.h"
+#include "engine/sensors/vehicle_file.h"
 #include "tui/terminal.h"
 
 namespace hitl::cli {
@@ -43,6 +44,7 @@ struct SimOptions {
   std::vector<std::string> fault_specs;  ///< --fault NAME[:ARGS][@T[+DUR]], repeatable
   std::string scenario_file;             ///< --scenario FILE.json
   std::string report_path;               ///< --report FILE.html: the recording drawn at the end (hitl report)
+  std::vector<std::size_t> units_on;     ///< --rangefinder, ...: the sensor units turned on (of sensors::unit_infos())
 };
 
 /// "flight.html" -> "flight.tlog": where --report records when --record is not given.
@@ -78,8 +80,8 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
       opt.tui = false;
     }
   }
-  auto vehicle = opt.vehicle_file.empty() ? Expected<model::VehicleConfig>(model::x500_vehicle_config())
-                                          : model::load_vehicle_config(opt.vehicle_file);
+  auto vehicle = opt.vehicle_file.empty() ? Expected<sensors::VehicleFile>(sensors::default_vehicle_file())
+                                          : sensors::load_vehicle_file(opt.vehicle_file);
   if (!vehicle) {
     log_error(cmd, "--vehicle: " + vehicle.error().message);
     return exit_code(vehicle.error());
@@ -104,7 +106,9 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     log_error(cmd, faults_read.error().message);
     return exit_code(faults_read.error());
   }
-  cfg.vehicle = *vehicle;
+  cfg.vehicle = vehicle->vehicle;
+  cfg.sensor_units = vehicle->units;
+  for (const std::size_t unit : opt.units_on) sensors::enable_unit(cfg.sensor_units, unit);
   cfg.world = *world;
   cfg.sysid = static_cast<uint8_t>(opt.sysid);
   cfg.compid = static_cast<uint8_t>(opt.compid);
@@ -287,6 +291,10 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_flag("--no-noise", [opt](int64_t) { opt->session.noise = false; },
                 "Noise-free sensors (tests only: PX4 marks repeating values stale and refuses to arm)")
       ->group(model);
+  // The sensor units (engine/sensors/units.h), each turned on by its own flag: --rangefinder, ...
+  const auto units = sensors::unit_infos();
+  for (std::size_t i = 0; i < units.size(); ++i)
+    sub->add_flag("--" + units[i].name, [opt, i](int64_t) { opt->units_on.push_back(i); }, units[i].summary)->group(model);
 
   sub->add_option("-t,--trajectory", opt->trajectory_file,
                   "Fly this trajectory file (the spec's trajectory_rc: arm, take off, follow the waypoints by stick, "

@@ -3,7 +3,7 @@
 # Install: copy to /usr/share/fish/vendor_completions.d/ or ~/.config/fish/completions/.
 
 # MAVLink messages compiled into hitl (for --show, --expect).
-set -g __hitl_messages ACTUATOR_OUTPUT_STATUS ATTITUDE ATTITUDE_QUATERNION ATTITUDE_TARGET AUTOPILOT_VERSION BATTERY_STATUS COMMAND_ACK COMMAND_INT COMMAND_LONG ESTIMATOR_STATUS EVENT EXTENDED_SYS_STATE GLOBAL_POSITION_INT GPS_RAW_INT HEARTBEAT HIGHRES_IMU HIL_ACTUATOR_CONTROLS HIL_GPS HIL_SENSOR HIL_STATE_QUATERNION HOME_POSITION LOCAL_POSITION_NED MANUAL_CONTROL MESSAGE_INTERVAL NAMED_VALUE_FLOAT NAMED_VALUE_INT ODOMETRY PARAM_REQUEST_LIST PARAM_REQUEST_READ PARAM_SET PARAM_VALUE PING POSITION_TARGET_LOCAL_NED RC_CHANNELS RC_CHANNELS_OVERRIDE SCALED_IMU SCALED_PRESSURE SERIAL_CONTROL SET_ATTITUDE_TARGET SET_POSITION_TARGET_LOCAL_NED STATUSTEXT SYSTEM_TIME SYS_STATUS TIMESYNC VFR_HUD VIBRATION
+set -g __hitl_messages ACTUATOR_OUTPUT_STATUS ATTITUDE ATTITUDE_QUATERNION ATTITUDE_TARGET AUTOPILOT_VERSION BATTERY_STATUS COMMAND_ACK COMMAND_INT COMMAND_LONG DISTANCE_SENSOR ESTIMATOR_STATUS EVENT EXTENDED_SYS_STATE GLOBAL_POSITION_INT GPS_RAW_INT HEARTBEAT HIGHRES_IMU HIL_ACTUATOR_CONTROLS HIL_GPS HIL_SENSOR HIL_STATE_QUATERNION HOME_POSITION LOCAL_POSITION_NED MANUAL_CONTROL MESSAGE_INTERVAL NAMED_VALUE_FLOAT NAMED_VALUE_INT ODOMETRY PARAM_REQUEST_LIST PARAM_REQUEST_READ PARAM_SET PARAM_VALUE PING POSITION_TARGET_LOCAL_NED RC_CHANNELS RC_CHANNELS_OVERRIDE SCALED_IMU SCALED_PRESSURE SERIAL_CONTROL SET_ATTITUDE_TARGET SET_POSITION_TARGET_LOCAL_NED STATUSTEXT SYSTEM_TIME SYS_STATUS TIMESYNC VFR_HUD VIBRATION
 
 function __hitl_commands --description 'The subcommands of a hitl command path'
     switch "$argv[1]"
@@ -146,6 +146,7 @@ complete -c hitl -n '__hitl_at "sim"' -l vehicle -r -F -d 'Vehicle JSON over the
 complete -c hitl -n '__hitl_at "sim"' -l world -r -F -d 'World JSON: home, magnetic field, wind'
 complete -c hitl -n '__hitl_at "sim"' -l seed -r -f -d 'Noise and gust seed'
 complete -c hitl -n '__hitl_at "sim"' -l no-noise -d 'Noise-free sensors'
+complete -c hitl -n '__hitl_at "sim"' -l rangefinder -d 'Also send DISTANCE_SENSOR from a downward lidar'
 complete -c hitl -n '__hitl_at "sim"' -s t -l trajectory -r -f -a '(__fish_complete_suffix .json)' -d 'Fly this trajectory file'
 complete -c hitl -n '__hitl_at "sim"' -l trajectory-mode -r -f -a 'attitude velocity' -d '-t\'s sticks: velocity'
 complete -c hitl -n '__hitl_at "sim"' -l fault -r -f -d 'Inject a fault at simulated time T for DUR seconds'

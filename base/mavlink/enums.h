@@ -42,6 +42,10 @@ inline constexpr float kArmDisarmForceMagic = 21196.0f;  ///< COMPONENT_ARM_DISA
 
 /// MAV_FRAME values hitl uses (ODOMETRY frame_id / child_frame_id).
 enum class MavFrame : uint8_t { LocalNed = 1, BodyFrd = 12, LocalFrd = 20 };
+/// MAV_DISTANCE_SENSOR (DISTANCE_SENSOR.type).
+enum class MavDistanceSensor : uint8_t { Laser = 0, Ultrasound = 1, Infrared = 2, Radar = 3, Unknown = 4 };
+/// MAV_SENSOR_ORIENTATION values hitl uses (DISTANCE_SENSOR.orientation; PX4 maps PITCH_270 to downward-facing).
+enum class MavSensorOrientation : uint8_t { None = 0, Pitch90 = 24, Pitch270 = 25 };
 /// MAV_ESTIMATOR_TYPE (ODOMETRY.estimator_type).
 enum class MavEstimatorType : uint8_t { Unknown = 0, Naive = 1, Vision = 2, Vio = 3, Gps = 4, GpsIns = 5, Mocap = 6, Lidar = 7, Autopilot = 8 };
 /// MAV_LANDED_STATE (EXTENDED_SYS_STATE.landed_state).

@@ -1548,8 +1548,47 @@ struct Event {
   }
 };
 
+/// DISTANCE_SENSOR (#132): Distance sensor information for an onboard rangefinder.
+struct DistanceSensor {
+  static constexpr uint32_t kId = 132;
+  static constexpr std::string_view kName = "DISTANCE_SENSOR";
+  static constexpr uint8_t kCrcExtra = 85;
+  static constexpr uint8_t kMinLength = 14;  // payload bytes without extensions
+  static constexpr uint8_t kMaxLength = 39;  // payload bytes with extensions
+
+  uint32_t time_boot_ms{};  ///< [ms] Timestamp (time since system boot).
+  uint16_t min_distance{};  ///< [cm] Minimum distance the sensor can measure
+  uint16_t max_distance{};  ///< [cm] Maximum distance the sensor can measure
+  uint16_t current_distance{};  ///< [cm] Current distance reading
+  uint8_t type{};  ///< Type of distance sensor.
+  uint8_t id{};  ///< Onboard ID of the sensor
+  uint8_t orientation{};  ///< Direction the sensor faces. downward-facing: ROTATION_PITCH_270, upward-facing: ROTATION_PITCH_90, backward-facing: ROTATION_PITCH_180, forward-facing: ROTATION
+  uint8_t covariance{};  ///< [cm^2] Measurement variance. Max standard deviation is 6cm. UINT8_MAX if unknown.
+  float horizontal_fov{};  ///< [rad] Horizontal Field of View (angle) where the distance measurement is valid and the field of view is known. Otherwise this is set to 0.
+  float vertical_fov{};  ///< [rad] Vertical Field of View (angle) where the distance measurement is valid and the field of view is known. Otherwise this is set to 0.
+  std::array<float, 4> quaternion{};  ///< Quaternion of the sensor orientation in vehicle body frame (w, x, y, z order, zero-rotation is 1, 0, 0, 0). Zero-rotation is along the vehicle body x-axis. This
+  uint8_t signal_quality{};  ///< [%] Signal quality of the sensor. Specific to each sensor type, representing the relation of the signal strength with the target reflectivity, distance, size or asp
+
+  /// Fields in wire order (base fields by size, then extensions).
+  static constexpr auto fields() {
+    return std::make_tuple(
+        FieldRef{"time_boot_ms", &DistanceSensor::time_boot_ms, "ms", "", false},
+        FieldRef{"min_distance", &DistanceSensor::min_distance, "cm", "", false},
+        FieldRef{"max_distance", &DistanceSensor::max_distance, "cm", "", false},
+        FieldRef{"current_distance", &DistanceSensor::current_distance, "cm", "", false},
+        FieldRef{"type", &DistanceSensor::type, "", "MAV_DISTANCE_SENSOR", false},
+        FieldRef{"id", &DistanceSensor::id, "", "", false},
+        FieldRef{"orientation", &DistanceSensor::orientation, "", "MAV_SENSOR_ORIENTATION", false},
+        FieldRef{"covariance", &DistanceSensor::covariance, "cm^2", "", false},
+        FieldRef{"horizontal_fov", &DistanceSensor::horizontal_fov, "rad", "", true},
+        FieldRef{"vertical_fov", &DistanceSensor::vertical_fov, "rad", "", true},
+        FieldRef{"quaternion", &DistanceSensor::quaternion, "", "", true},
+        FieldRef{"signal_quality", &DistanceSensor::signal_quality, "%", "", true});
+  }
+};
+
 /// Every message compiled into hitl, for registries and conformance tests.
-using All = TypeList<Heartbeat, SysStatus, SystemTime, Ping, ParamRequestRead, ParamRequestList, ParamValue, ParamSet, GpsRawInt, ScaledImu, ScaledPressure, Attitude, AttitudeQuaternion, LocalPositionNed, GlobalPositionInt, RcChannels, ManualControl, RcChannelsOverride, VfrHud, CommandInt, CommandLong, CommandAck, SetAttitudeTarget, AttitudeTarget, SetPositionTargetLocalNed, PositionTargetLocalNed, HilActuatorControls, HighresImu, HilSensor, Timesync, HilGps, HilStateQuaternion, SerialControl, BatteryStatus, AutopilotVersion, EstimatorStatus, Vibration, HomePosition, MessageInterval, ExtendedSysState, NamedValueFloat, NamedValueInt, Statustext, Odometry, ActuatorOutputStatus, Event>;
+using All = TypeList<Heartbeat, SysStatus, SystemTime, Ping, ParamRequestRead, ParamRequestList, ParamValue, ParamSet, GpsRawInt, ScaledImu, ScaledPressure, Attitude, AttitudeQuaternion, LocalPositionNed, GlobalPositionInt, RcChannels, ManualControl, RcChannelsOverride, VfrHud, CommandInt, CommandLong, CommandAck, SetAttitudeTarget, AttitudeTarget, SetPositionTargetLocalNed, PositionTargetLocalNed, HilActuatorControls, HighresImu, HilSensor, Timesync, HilGps, HilStateQuaternion, SerialControl, BatteryStatus, AutopilotVersion, EstimatorStatus, Vibration, HomePosition, MessageInterval, ExtendedSysState, NamedValueFloat, NamedValueInt, Statustext, Odometry, ActuatorOutputStatus, Event, DistanceSensor>;
 
 /// Every message of the XML, typed above or not, by id: {id, CRC_EXTRA, min length, max length,
 /// target flags, target_system offset, target_component offset} (message_check.h).

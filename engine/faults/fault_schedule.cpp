@@ -182,6 +182,7 @@ void FaultSchedule::fold(double t_s) {
       case FaultKind::VioDrift: a.vio_offset_NED_m += Eigen::Vector3d(v[0], v[1], v[2]) * (t_s - e.started_s); break;
       case FaultKind::VioJump: a.vio_offset_NED_m += Eigen::Vector3d(v[0], v[1], v[2]); break;
       case FaultKind::VioQuality: a.vio_quality = static_cast<int>(v[0]); break;
+      case FaultKind::SensorUnit: sensors::fold_unit_fault(a.units, e.spec.unit_fault, v, e.started_s, t_s); break;
     }
   }
   // Products of scales within one fault's range (1,100 stacked motor:0,2 are 2, not 2^1100).

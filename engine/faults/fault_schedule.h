@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "engine/faults/fault_spec.h"
+#include "engine/sensors/unit_set.h"
 
 namespace hitl::faults {
 
@@ -83,6 +84,7 @@ struct ActiveFaults {
   bool vio_loss = false;
   LinkImpairment hil_link;  ///< to the flight stack
   LinkImpairment vio_link;  ///< ODOMETRY to the VIO server
+  sensors::UnitFaults units;  ///< the sensor units' faults, each folded by its unit's table
 };
 
 /// One fault's start and end as it happened (the summary's `faults`).

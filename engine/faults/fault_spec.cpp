@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "engine/sensors/unit_set.h"
+
 namespace hitl::faults {
 namespace {
 
@@ -124,7 +126,16 @@ const std::vector<FaultInfo>& fault_catalogue() {
       {FaultKind::VioDuplicate, FaultGroup::VioLink, "vio-dup", {{"p", 0, 1}}, 1, ":0.1", "each ODOMETRY is sent twice with probability p"},
       {FaultKind::VioRate, FaultGroup::VioLink, "vio-rate", {{"hz", 0.1, kMaxLinkRate_Hz}}, 1, ":10", "the VIO link carries at most hz ODOMETRY a second of simulated time (the rest dropped)"},
   };
-  return catalogue;
+  // The sensor units' faults, from their folders (engine/sensors/units.h).
+  static const std::vector<FaultInfo> with_units = [] {
+    std::vector<FaultInfo> all = catalogue;
+    const auto& units = sensors::unit_fault_infos();
+    for (std::size_t i = 0; i < units.size(); ++i)
+      all.push_back({FaultKind::SensorUnit, FaultGroup::OptionalSensors, units[i].name, units[i].args, units[i].required_args,
+                     units[i].example, units[i].meaning, false, i});
+    return all;
+  }();
+  return with_units;
 }
 
 const char* to_string(FaultGroup group) {
@@ -134,6 +145,7 @@ const char* to_string(FaultGroup group) {
     case FaultGroup::Mag: return "mag";
     case FaultGroup::Baro: return "baro";
     case FaultGroup::Gps: return "GPS";
+    case FaultGroup::OptionalSensors: return "optional sensors";
     case FaultGroup::Vio: return "VIO";
     case FaultGroup::Environment: return "environment";
     case FaultGroup::HilLink: return "HIL link";
@@ -148,6 +160,15 @@ const FaultInfo& info(FaultKind kind) {
     if (f.kind == kind) return f;
   return fault_catalogue().front();  // unreachable: every kind is in the catalogue
 }
+
+const FaultInfo& info(const FaultSpec& spec) {
+  if (spec.kind != FaultKind::SensorUnit) return info(spec.kind);
+  for (const auto& f : fault_catalogue())
+    if (f.kind == FaultKind::SensorUnit && f.unit_fault == spec.unit_fault) return f;
+  return fault_catalogue().front();  // unreachable: make_fault takes unit_fault from the catalogue
+}
+
+std::string FaultSpec::name() const { return info(*this).name; }
 
 const FaultInfo* find_fault(std::string_view name) {
   for (const auto& f : fault_catalogue())
@@ -228,6 +249,7 @@ Expected<FaultSpec> make_fault(const std::string& name, const std::vector<double
     return Error{where + ": needs a duration (" + std::string(f->name) + "@T+DUR; its shape spans it)"};
   FaultSpec spec;
   spec.kind = f->kind;
+  spec.unit_fault = f->unit_fault;
   spec.args = args;
   spec.start_s = start_s;
   spec.duration_s = duration_s;

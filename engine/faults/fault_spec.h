@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "base/common/expected.h"
+#include "engine/sensors/unit.h"
 
 namespace hitl::faults {
 
@@ -49,22 +50,26 @@ enum class FaultKind {
   // the links' faults beyond drop and delay; each on the HIL link (to the flight stack) and the VIO link
   HilBurst, HilJitter, HilReorder, HilDuplicate, HilRate,
   VioDrop, VioDelay, VioBurst, VioJitter, VioReorder, VioDuplicate, VioRate,
+  /// A sensor unit's fault (engine/sensors/unit.h): its folder names it and says what it does;
+  /// FaultSpec::unit_fault says which. Stays last.
+  SensorUnit,
 };
+/// How many kinds there are (SensorUnit is the last).
+inline constexpr std::size_t kFaultKinds = static_cast<std::size_t>(FaultKind::SensorUnit) + 1;
 
 /// Where a fault happens, for listing them by kind (the dashboard's fault menu), in this order.
-enum class FaultGroup { Vehicle, Imu, Mag, Baro, Gps, Vio, Environment, HilLink, VioLink, Board };
-/// "vehicle", "IMU", "mag", "baro", "GPS", "VIO", "environment", "HIL link", "VIO link", "board"
+enum class FaultGroup { Vehicle, Imu, Mag, Baro, Gps, OptionalSensors, Vio, Environment, HilLink, VioLink, Board };
+/// "vehicle", "IMU", "mag", "baro", "GPS", "optional sensors" (the sensor units'), "VIO",
+/// "environment", "HIL link", "VIO link", "board"
 const char* to_string(FaultGroup group);
-constexpr FaultGroup kFaultGroups[] = {FaultGroup::Vehicle, FaultGroup::Imu,     FaultGroup::Mag,         FaultGroup::Baro,
-                                       FaultGroup::Gps,     FaultGroup::Vio,     FaultGroup::Environment, FaultGroup::HilLink,
-                                       FaultGroup::VioLink, FaultGroup::Board};
+constexpr FaultGroup kFaultGroups[] = {FaultGroup::Vehicle,     FaultGroup::Imu,     FaultGroup::Mag,
+                                       FaultGroup::Baro,        FaultGroup::Gps,     FaultGroup::OptionalSensors,
+                                       FaultGroup::Vio,         FaultGroup::Environment, FaultGroup::HilLink,
+                                       FaultGroup::VioLink,     FaultGroup::Board};
 
-struct FaultArg {
-  const char* name;  ///< with its unit: "north_m", "pa_per_s"
-  double min;
-  double max;
-  bool integer = false;
-};
+/// An argument with its unit in the name ("north_m", "pa_per_s") and its range; one type for every
+/// fault, the sensor units' too (they sit below engine/faults, so it is defined with them).
+using FaultArg = sensors::FaultArg;
 
 struct FaultInfo {
   FaultKind kind;
@@ -78,10 +83,13 @@ struct FaultInfo {
   const char* example;
   const char* meaning;        ///< one line: what it does where
   bool needs_duration = false;  ///< its shape spans its duration (gust)
+  std::size_t unit_fault = 0;   ///< SensorUnit: which (of sensors::unit_fault_infos())
 };
 
-/// Every fault the simulator knows, in the order docs/faults.md lists them.
+/// Every fault the simulator knows, in the order docs/faults.md lists them; the sensor units'
+/// (engine/sensors/units.h) last.
 const std::vector<FaultInfo>& fault_catalogue();
+/// A built-in kind's entry (SensorUnit: the first unit fault's; use info(spec) for a spec).
 const FaultInfo& info(FaultKind kind);
 /// nullptr when `name` is no fault.
 const FaultInfo* find_fault(std::string_view name);
@@ -102,6 +110,7 @@ struct Condition {
 
 struct FaultSpec {
   FaultKind kind = FaultKind::GpsLoss;
+  std::size_t unit_fault = 0;  ///< SensorUnit: which (of sensors::unit_fault_infos())
   std::vector<double> args;  ///< in the catalogue's order and units
   double start_s = 0;        ///< simulated time (with start_when: the earliest)
   std::optional<double> duration_s;  ///< none: until the session ends (or end_when)
@@ -109,12 +118,15 @@ struct FaultSpec {
   std::optional<Condition> start_when;
   std::optional<Condition> end_when;
 
-  std::string name() const { return info(kind).name; }
+  std::string name() const;
   /// "2,0.6" ("" without arguments).
   std::string args_text() const;
   /// "motor:2,0.6@15+5"
   std::string text() const;
 };
+
+/// The catalogue's entry of a spec (a sensor unit's fault by its unit_fault).
+const FaultInfo& info(const FaultSpec& spec);
 
 /// A suggestion for an unknown fault name ("" for none); the CLI passes its did-you-mean.
 using Suggest = std::function<std::string(const std::string& unknown_name)>;

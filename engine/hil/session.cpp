@@ -21,7 +21,13 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   auto mc = model::Multicopter::create(vehicle, config.world, config.seed);
   if (!mc) return mc.error();
   s.model = std::move(mc.value());
-  s.sensors.emplace(vehicle, config.world, config.seed);
+  s.sensors.emplace(vehicle, config.world, config.seed,
+                    config.noise ? config.sensor_units : sensors::without_noise(config.sensor_units));
+  for (const auto& f : config.faults) {  // a sensor unit's fault acts on its unit: refused while it is off
+    if (f.kind != faults::FaultKind::SensorUnit) continue;
+    if (const auto off = sensors::unit_off_for_fault(config.sensor_units, f.unit_fault); !off.empty())
+      return Error::usage("fault " + f.name() + ": " + off);
+  }
   s.rest_altitude_m = s.model->state().p_ENU_m.z();
   if (!(config.vio_rate_hz > 0)) return Error::input("the VIO rate (vio_rate_hz) must be > 0");
   if (!(config.truth_rate_hz >= 0)) return Error::input("the truth rate (truth_rate_hz) must be >= 0 (0: no truth to clients)");

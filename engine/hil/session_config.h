@@ -16,6 +16,7 @@
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
 #include "engine/net/link_spec.h"
+#include "engine/sensors/unit_set.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/vehicle/trajectory_pilot.h"
 
@@ -65,6 +66,7 @@ struct SessionConfig {
   double no_answer_warning_s = 2.0;       ///< say so when nothing came back this long after the first HIL_SENSOR
 
   model::VehicleConfig vehicle;           ///< --vehicle FILE over the compiled-in x500
+  sensors::UnitConfigs sensor_units;      ///< the sensor units (--vehicle FILE's sensors.<name>, --<name>): off by default
   model::WorldConfig world;               ///< --world FILE
   uint64_t seed = 1;                      ///< --seed
   bool noise = true;                      ///< --no-noise

@@ -40,7 +40,7 @@ Status Session::Impl::step(EventSink& events) {
   touchdowns.observe(state);
   apply_faults(events);
   // Sensors due at this time, with the active sensor faults.
-  auto frame = sensors->sample_due(state);
+  auto frame = sensors->sample_due(state, fault_schedule.active().units);
   sensor_faults->apply(fault_schedule.active(), sim_time_s(), frame, state.rotor_speed_rad_s);
   say_imu_saturated(events);
   // Messages, flushed as one datagram to the flight stack; then VIO and truth.
@@ -73,6 +73,14 @@ void Session::Impl::apply_faults(EventSink& events) {
   }
   std::vector<faults::FaultChange> cleared;
   for (auto& r : requests) {
+    if (r.start && r.start->kind == faults::FaultKind::SensorUnit) {  // started by hand on a unit that is off: said, not started
+      if (const auto off = sensors::unit_off_for_fault(config.sensor_units, r.start->unit_fault); !off.empty()) {
+        const SessionEvent e{Severity::Warning, "fault " + r.start->name() + " not started: " + off, std::nullopt};
+        services->announce(e.severity, e.text);
+        events.on_event(e);
+        continue;
+      }
+    }
     if (r.start) fault_schedule.start_now(std::move(*r.start));
     else for (auto& c : fault_schedule.clear(r.clear_name, sim_time_s())) cleared.push_back(std::move(c));
   }
@@ -137,6 +145,8 @@ void Session::Impl::send_messages(const sensors::SensorFrame& frame, uint64_t t_
     stack->send(make_hil_gps(*frame.gps, t_us));
     paths->on_hil_gps(sent_s);
   }
+  // The sensor units' messages (DISTANCE_SENSOR, ...), each as its unit encodes it.
+  sensors->units().send(frame.units, t_us, [&](const auto& message) { stack->send(message); });
   if (pilot) fly_pilot(model->state(), events);
   if (sim_time_s() + 1e-9 >= next_heartbeat_s) {
     next_heartbeat_s += 1.0;

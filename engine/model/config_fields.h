@@ -2,7 +2,8 @@
 // vehicle_fields / world_fields) is one function over a visitor, and the visitors here read it
 // (Reader: merge over a base, range checks, every error with its key path, unknown keys) or write
 // it (Writer). parse() and write() run a table over a whole document.
-// Private to hitl_model (nlohmann_json is a private dependency): only config_json.cpp includes it.
+// Private to the config readers (nlohmann_json is a private dependency): config_json.cpp and the
+// sensor units' keys (engine/sensors/vehicle_file.cpp) include it.
 #pragma once
 
 #include <array>
@@ -18,46 +19,12 @@
 
 #include "base/common/expected.h"
 #include "base/common/json_nesting.h"
+#include "engine/model/config_range.h"
 #include "engine/model/vehicle_config.h"
 
 namespace hitl::model::config_fields {
 
 using json = nlohmann::json;
-
-/// An allowed interval for a number, and how to say it in an error.
-struct Range {
-  enum class Kind { Any, Positive, NonNegative, Closed };
-  Kind kind = Kind::Any;
-  double lo = 0.0;
-  double hi = 0.0;
-
-  bool contains(double v) const {
-    switch (kind) {
-      case Kind::Any: return std::isfinite(v);
-      case Kind::Positive: return v > 0.0 && std::isfinite(v);
-      case Kind::NonNegative: return v >= 0.0 && std::isfinite(v);
-      case Kind::Closed: return v >= lo && v <= hi;
-    }
-    return false;
-  }
-  std::string describe() const {
-    switch (kind) {
-      case Kind::Any: return "must be a finite number";
-      case Kind::Positive: return "must be > 0";
-      case Kind::NonNegative: return "must be >= 0";
-      case Kind::Closed: {
-        std::ostringstream s;
-        s << "must be in [" << lo << ", " << hi << "]";
-        return s.str();
-      }
-    }
-    return {};
-  }
-};
-constexpr Range kAny{};
-constexpr Range kPositive{Range::Kind::Positive};
-constexpr Range kNonNegative{Range::Kind::NonNegative};
-constexpr Range closed(double lo, double hi) { return {Range::Kind::Closed, lo, hi}; }
 
 inline std::string child_path(const std::string& parent, std::string_view key) {
   return parent.empty() ? std::string(key) : parent + "." + std::string(key);
@@ -80,6 +47,12 @@ class Reader {
     if (!j->is_number_integer()) return fail(key, "must be an integer (got " + j->dump() + ")");
     if (!range.contains(j->get<double>())) return fail(key, range.describe() + " (got " + j->dump() + ")");
     out = j->get<int>();
+  }
+  void boolean(const char* key, bool& out) {
+    const json* j = find(key);
+    if (!j) return;
+    if (!j->is_boolean()) return fail(key, "must be true or false (got " + j->dump() + ")");
+    out = j->get<bool>();
   }
   void text(const char* key, std::string& out) {
     const json* j = find(key);
@@ -194,6 +167,7 @@ class Writer {
 
   void number(const char* key, const double& v, Range) { object_[key] = v; }
   void integer(const char* key, const int& v, Range) { object_[key] = v; }
+  void boolean(const char* key, const bool& v) { object_[key] = v; }
   void text(const char* key, const std::string& v) { object_[key] = v; }
   void turning(const char* key, const Turning& v) { object_[key] = v == Turning::Ccw ? "ccw" : "cw"; }
   void vec3(const char* key, const Eigen::Vector3d& v, Range) { object_[key] = to_json(v); }

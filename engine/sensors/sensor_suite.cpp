@@ -4,16 +4,18 @@
 
 namespace hitl::sensors {
 
-SensorSuite::SensorSuite(const model::VehicleConfig& vehicle, const model::WorldConfig& world, std::uint64_t seed)
+SensorSuite::SensorSuite(const model::VehicleConfig& vehicle, const model::WorldConfig& world, std::uint64_t seed,
+                         const UnitConfigs& units)
     : imu_(vehicle.sensors.imu, world, seed),
       mag_(vehicle.sensors.mag, world.magnetic_field, seed),
       baro_(vehicle.sensors.baro, world, seed),
       gps_(vehicle.sensors.gps, world.home, seed),
       geodesy_(world.home),
       scheduler_(vehicle.sensors.imu.rate_hz, vehicle.sensors.mag.rate_hz, vehicle.sensors.baro.rate_hz,
-                 vehicle.sensors.gps.rate_hz) {}
+                 vehicle.sensors.gps.rate_hz),
+      units_(units, world, seed, 1.0 / vehicle.sensors.imu.rate_hz) {}
 
-SensorFrame SensorSuite::sample_due(const model::VehicleState& state) {
+SensorFrame SensorSuite::sample_due(const model::VehicleState& state, const UnitFaults& unit_faults) {
   const double t_s = state.time_s;
   const DueSensors due = scheduler_.due(t_s);
   SensorFrame frame;
@@ -21,6 +23,7 @@ SensorFrame SensorSuite::sample_due(const model::VehicleState& state) {
   if (due.mag) frame.mag = mag_.sample(state, t_s);
   if (due.baro) frame.baro = baro_.sample(state, t_s);
   if (due.gps) frame.gps = gps_.sample(state, t_s);
+  frame.units = units_.sample_due(state, unit_faults);
   frame.truth = ground_truth(state, geodesy_);
   return frame;
 }
@@ -31,6 +34,7 @@ void SensorSuite::reset() {
   baro_.reset();
   gps_.reset();
   scheduler_.reset();
+  units_.reset();
 }
 
 }  // namespace hitl::sensors

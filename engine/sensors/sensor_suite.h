@@ -1,5 +1,7 @@
 // All sensors of a vehicle with their schedule: what the session loop calls after each physics
-// step. Each sensor has its own RNG stream derived from the seed.
+// step. Each sensor has its own RNG stream derived from the seed. The IMU, magnetometer and
+// barometer (one HIL_SENSOR) and the GPS (HIL_GPS) are built in; the sensor units (unit.h: the
+// rangefinder, ...) come from their registration (units.h) and their settings.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include "engine/sensors/magnetometer.h"
 #include "engine/sensors/samples.h"
 #include "engine/sensors/scheduler.h"
+#include "engine/sensors/unit_set.h"
 
 namespace hitl::sensors {
 
@@ -24,14 +27,17 @@ struct SensorFrame {
   std::optional<MagSample> mag;
   std::optional<BaroSample> baro;
   std::optional<GpsSample> gps;
+  UnitSamples units;  ///< the enabled units' samples that were due, with their faults
   GroundTruth truth;
 };
 
 class SensorSuite {
  public:
-  SensorSuite(const model::VehicleConfig& vehicle, const model::WorldConfig& world, std::uint64_t seed);
-  /// Samples every sensor due at state.time_s.
-  SensorFrame sample_due(const model::VehicleState& state);
+  SensorSuite(const model::VehicleConfig& vehicle, const model::WorldConfig& world, std::uint64_t seed,
+              const UnitConfigs& units = {});
+  /// Samples every sensor due at state.time_s; the units' with `unit_faults` applied (the built-in
+  /// sensors' faults are applied after, by engine/faults' SensorFaults).
+  SensorFrame sample_due(const model::VehicleState& state, const UnitFaults& unit_faults = {});
   /// Noise processes, biases and schedule back to their start (a reset run repeats).
   void reset();
 
@@ -41,6 +47,7 @@ class SensorSuite {
   Barometer& barometer() { return baro_; }
   Gps& gps() { return gps_; }
   const LocalGeodesy& geodesy() const { return geodesy_; }
+  const UnitSet& units() const { return units_; }
 
  private:
   Imu imu_;
@@ -49,6 +56,7 @@ class SensorSuite {
   Gps gps_;
   LocalGeodesy geodesy_;
   SensorScheduler scheduler_;
+  UnitSet units_;
 };
 
 }  // namespace hitl::sensors

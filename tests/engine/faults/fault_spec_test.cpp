@@ -221,5 +221,41 @@ TEST(FaultSpec, EveryFaultHasAGroupAndAnExampleThatStartsIt) {
   EXPECT_STREQ(info(FaultKind::Gust).example, ":5,0+6");  // needs a duration: its example has one
 }
 
+// Each kind has its entry in the catalogue (its case in the fold is a compile error when missing:
+// -Werror=switch in engine/faults).
+TEST(FaultSpec, EveryKindHasItsCatalogueEntry) {
+  for (std::size_t k = 0; k < kFaultKinds; ++k) EXPECT_EQ(static_cast<std::size_t>(info(static_cast<FaultKind>(k)).kind), k) << k;
+}
+
+// A sensor unit's faults come from its folder (engine/sensors/rangefinder) through the catalogue,
+// parse like the others and fold into the unit's own state.
+TEST(FaultSpec, SensorUnitFaultsComeFromTheirUnitAndFoldIntoIt) {
+  const FaultInfo* stuck = find_fault("rangefinder-stuck");
+  const FaultInfo* none = find_fault("rangefinder-no-return");
+  ASSERT_NE(stuck, nullptr);
+  ASSERT_NE(none, nullptr);
+  EXPECT_EQ(stuck->kind, FaultKind::SensorUnit);
+  EXPECT_EQ(stuck->group, FaultGroup::OptionalSensors);
+  EXPECT_NE(stuck->unit_fault, none->unit_fault);
+  auto spec = parse_fault("rangefinder-no-return@2+3");
+  ASSERT_TRUE(spec) << spec.error().message;
+  EXPECT_EQ(spec->name(), "rangefinder-no-return");
+  EXPECT_EQ(spec->text(), "rangefinder-no-return@2+3");
+  auto bad = parse_fault("rangefinder-stuck:1");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("fault rangefinder-stuck: takes 0 arguments"), std::string::npos) << bad.error().message;
+  FaultSchedule schedule({*spec, *parse_fault("rangefinder-stuck@4")});
+  schedule.update(1.0);
+  EXPECT_FALSE(std::get<sensors::Rangefinder::Faults>(schedule.active().units).no_return);
+  schedule.update(2.0);
+  EXPECT_TRUE(std::get<sensors::Rangefinder::Faults>(schedule.active().units).no_return);
+  EXPECT_FALSE(std::get<sensors::Rangefinder::Faults>(schedule.active().units).stuck);
+  schedule.update(4.0);
+  EXPECT_TRUE(std::get<sensors::Rangefinder::Faults>(schedule.active().units).stuck);
+  schedule.update(5.0);
+  EXPECT_FALSE(std::get<sensors::Rangefinder::Faults>(schedule.active().units).no_return);  // its 3 s are over
+  EXPECT_EQ(schedule.active_texts(), std::vector<std::string>{"rangefinder-stuck"});
+}
+
 }  // namespace
 }  // namespace hitl::faults

@@ -181,5 +181,24 @@ TEST(SensorFaultsOnTheWire, ImuStuckRepeatsOneReadingWhileItLastsAndNoiseScaleWi
   EXPECT_NEAR(sigma(loud) / sigma(quiet), 5.0, 1.5);
 }
 
+// A sensor unit's fault started by hand (the dashboard) acts only while its unit is on; while it is
+// off it is said and not started.
+TEST(SensorFaultsOnTheWire, AUnitsFaultStartedByHandStartsOnlyWhileTheUnitIsOn) {
+  for (const bool on : {false, true}) {
+    SCOPED_TRACE(on ? "rangefinder on" : "rangefinder off");
+    Board board;
+    Running run(board, {}, /*noise=*/false, "", [on](SessionConfig& c) {
+      if (on) sensors::enable_unit(c.sensor_units, 0);
+    });
+    board.receive_until(0.2, 10);
+    auto spec = faults::parse_live_fault("rangefinder-stuck");
+    ASSERT_TRUE(spec) << spec.error().message;
+    run.session().start_fault(*spec);
+    board.receive_until(0.6, 10);
+    const auto active = run.snapshot().active_faults;
+    EXPECT_EQ(active, on ? std::vector<std::string>{"rangefinder-stuck"} : std::vector<std::string>{});
+  }
+}
+
 }  // namespace
 }  // namespace hitl::hil

@@ -112,6 +112,7 @@ class Running {
     thread_.join();
   }
   SessionSnapshot snapshot() const { return session_->snapshot(); }
+  Session& session() { return *session_; }
 
  private:
   std::unique_ptr<Session> session_;
