@@ -121,7 +121,8 @@ TEST(Rangefinder, OffByDefaultOnItsOwnScheduleWhenOn) {
     auto s = at(1.5);
     s.time_s = 0.004 * k;
     if (std::get<0>(off.sample_due(s).units)) ++off_samples;
-    if (const auto& r = std::get<0>(on.sample_due(s).units)) {
+    const auto frame = on.sample_due(s);  // held: a reference into a temporary frame would dangle
+    if (const auto& r = std::get<0>(frame.units)) {
       ++on_samples;
       if (first_s < 0) first_s = r->time_s;
     }
