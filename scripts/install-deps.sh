@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs everything hitl needs to build and test, from Debian/Ubuntu packages.
+# Installs everything hitl needs to build and test, from Debian/Ubuntu packages (--test: the tests'
+# tools too; --px4: also what scripts/px4-sitl.sh needs to build PX4 SITL).
 # Debian 12 and Ubuntu 24.04. Uses sudo when not root.
 set -euo pipefail
 SUDO=""
@@ -28,6 +29,12 @@ if [ "${1:-}" = "--test" ]; then
   if ! grep -qs '^ID=ubuntu' /etc/os-release; then packages+=(chromium); fi
   command -v node >/dev/null 2>&1 || packages+=(nodejs)
   command -v npm >/dev/null 2>&1 || packages+=(npm)
+fi
+if [ "${1:-}" = "--px4" ]; then
+  # PX4 v1.16.0 SITL's build (scripts/px4-sitl.sh): Debian's Python packages PX4's generators use,
+  # Ninja, and git for PX4's version script.
+  packages+=(python3-empy python3-jinja2 python3-kconfiglib python3-jsonschema python3-future
+             python3-packaging python3-genmsg python3-numpy ninja-build g++ git)
 fi
 missing=()
 for p in "${packages[@]}"; do

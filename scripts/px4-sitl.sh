@@ -5,7 +5,7 @@
 #   scripts/px4-sitl.sh ~/px4/PX4-Autopilot            # build/px4_sitl_default (lockstep)
 #   scripts/px4-sitl.sh ~/px4/PX4-Autopilot --nolockstep   # build/px4_sitl_nolockstep too (HITL over UDP)
 #   HITL_PX4_DIR=~/px4/PX4-Autopilot ctest -L px4
-# It installs PX4's Python and build packages from Debian (sudo when not root), switches off in
+# It installs PX4's Python and build packages from Debian (install-deps.sh --px4), switches off in
 # boards/px4/sitl/default.px4board the modules that need submodules SITL does not use, and builds
 # with Ninja on every core. It never fetches anything: a missing submodule is named and it stops.
 set -euo pipefail
@@ -54,19 +54,7 @@ if git -C "$tree" rev-parse --git-dir >/dev/null 2>&1; then
   esac
 fi
 
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-packages=(python3-empy python3-jinja2 python3-kconfiglib python3-jsonschema python3-future
-          python3-packaging python3-genmsg python3-numpy ninja-build ccache cmake g++ git)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "px4-sitl: installing ${missing[*]}" >&2
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+"$(dirname "$0")/install-deps.sh" --px4
 
 # Modules whose sources are submodules SITL does not need (or Gazebo): off, so the build needs
 # only the five above. Idempotent.
