@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -147,13 +149,22 @@ RunResult run_hitl(const std::vector<std::string>& args, std::chrono::millisecon
 }
 
 uint16_t free_udp_port() {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in addr = loopback_address(0);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
-  socklen_t len = sizeof addr;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
-  ::close(fd);
-  return ntohs(addr.sin_port);
+  // The kernel may hand the same ephemeral port out again once it is closed: a test asking for its
+  // HIL, client and local ports one after the other once got two equal ones ("--clients 55553 is
+  // also the --local-port"). Never give one process the same port twice.
+  static std::mutex mutex;
+  static std::set<uint16_t> given;
+  std::lock_guard<std::mutex> lock(mutex);
+  for (int attempt = 0;; ++attempt) {
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in addr = loopback_address(0);
+    ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
+    socklen_t len = sizeof addr;
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+    ::close(fd);
+    const uint16_t port = ntohs(addr.sin_port);
+    if (given.insert(port).second || attempt >= 100) return port;
+  }
 }
 
 std::string temp_dir() {
