@@ -20,8 +20,7 @@ void InspectDashboard::on_frame(const mavlink::Frame& frame, const std::string& 
 
 void InspectDashboard::show(const mavlink::StatusText& text) {
   const std::string from = source_of_sysid_[text.sysid] + " " + std::to_string(text.sysid);
-  log_.add_statustext(severity_from_mavlink(text.severity), from,
-                      "[" + from + "] " + mavlink::printable_statustext(text.text));
+  log_.add_statustext(severity_from_mavlink(text.severity), from, "[" + from + "] " + text.text);  // the log cleans it
 }
 
 void InspectDashboard::on_tick(const telemetry::TrafficSummary& summary) {
