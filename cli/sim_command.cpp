@@ -18,6 +18,7 @@
 #include "engine/faults/scenario.h"
 #include "engine/hil/session.h"
 #include "engine/hil/stack_peer.h"
+#include "engine/px4/px4_process.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
 #include "engine/model/x500_defaults.h"
@@ -35,6 +36,10 @@ struct SimOptions {
   bool tui = false;  ///< --tui: the dashboard (docs/tui.md)
   std::string px4_sitl;  ///< "tcpin:4560" / "udp:HOST:PORT" when --px4-sitl is given (bare: tcpin:4560)
   bool px4_sitl_given = false;
+  std::string px4_dir;                   ///< --px4 DIR: PX4 SITL that hitl starts (engine/hil/px4_launch.h)
+  std::vector<std::string> px4_params;   ///< --px4-param NAME=VALUE, repeatable
+  std::optional<double> px4_speed;       ///< --px4-speed K
+  double px4_timeout_s = 30;             ///< --px4-timeout S
   AdbOptions adb;  ///< --adb, --adb-serial, --adb-relay: the board through adb (docs/adb.md)
   bool no_vio = false;
   std::optional<bool> en_vio_output;
@@ -68,6 +73,30 @@ Status read_faults(const SimOptions& opt, std::vector<faults::FaultSpec>& out) {
     out.insert(out.end(), scenario->begin(), scenario->end());
   }
   if (auto limit = faults::check_active_limit(out); !limit) return limit.error().prefixed("--fault and --scenario: ");
+  return Ok{};
+}
+
+/// --px4, --px4-param, --px4-speed, --px4-timeout into the session's PX4 launch.
+Status read_px4_options(SimOptions& opt) {
+  auto& cfg = opt.session;
+  if (opt.px4_dir.empty()) {
+    if (!opt.px4_params.empty() || opt.px4_speed)
+      return Error::usage("--px4-param and --px4-speed need --px4 DIR (a PX4 that hitl starts)");
+    return Ok{};
+  }
+  hil::Px4Options launch;
+  launch.dir = opt.px4_dir;
+  launch.connect_timeout_s = opt.px4_timeout_s;
+  for (const auto& text : opt.px4_params) {
+    auto p = px4::parse_px4_param(text);
+    if (!p) return p.error().prefixed("--px4-param ");
+    launch.params.push_back(*p);
+  }
+  if (opt.px4_speed) cfg.speed = *opt.px4_speed;
+  if (!(cfg.speed > 0))
+    return Error::usage("--speed 0 with --px4: PX4 runs in lockstep at a stated factor (PX4_SIM_SPEED_FACTOR); give "
+                        "--px4-speed K (on a 2-core machine K <= 8 keeps PX4's estimator up)");
+  cfg.px4 = std::move(launch);
   return Ok{};
 }
 
@@ -124,7 +153,11 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     }
     cfg.px4_sitl = *sitl;
   }
-  if (cfg.local_port != 0 && cfg.local_port == cfg.clients_port &&
+  if (auto px4 = read_px4_options(opt); !px4) {
+    log_error(cmd, px4.error().message);
+    return exit_code(px4.error());
+  }
+  if (cfg.local_port != 0 && cfg.local_port == cfg.clients_port && !cfg.px4 &&
       (cfg.bind_address == "0.0.0.0" || cfg.bind_address == cfg.clients_bind)) {
     // Both would bind the same UDP port: the second bind failed with "another process is bound
     // there", which sent the user looking for a process that was this one.
@@ -230,7 +263,8 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       "Examples:\n"
       "  hitl sim --adb                    # board over USB through adb (hitl-adb-relay; docs/adb.md)\n"
       "  hitl sim -i 192.168.101.2         # board over USB-Ethernet\n"
-      "  hitl sim --px4-sitl               # PX4 SITL connects to TCP 4560 (tcpin:4560, lockstep)\n"
+      "  hitl sim --px4 ~/px4/PX4-Autopilot # starts PX4 SITL, flies it, stops it (docs/sim.md)\n"
+      "  hitl sim --px4-sitl               # PX4 SITL you start connects to TCP 4560 (tcpin:4560, lockstep)\n"
       "  hitl sim --duration 60 --json     # headless, a JSON summary at the end\n"
       "Names of the spec's SDF plugin parameters work too (--mavlink-addr, --vio-update-rate, ...).");
   const char* link = "Board link";
@@ -247,6 +281,19 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                                    "bare: tcpin:4560) or udp:HOST:PORT (PX4's UDP simulator port); tcp:PORT and udp:PORT "
                                    "(at -i) still work")
                        ->expected(0, 1)->type_name("[tcpin:4560|udp:HOST:PORT]")->group(link);
+  sub->add_option("--px4", opt->px4_dir,
+                  "Start PX4 SITL and fly it (one command): DIR is a PX4 SITL build folder (bin/px4, etc/) or a PX4 "
+                  "tree with build/px4_sitl_default (scripts/px4-sitl.sh); hitl picks a free instance, gives PX4 the "
+                  "vehicle's parameters, routes clients to PX4's GCS port and stops PX4 at the end (docs/sim.md)")
+      ->type_name("DIR")->group(link);
+  sub->add_option("--px4-param", opt->px4_params,
+                  "With --px4: set a PX4 parameter at its start, over hitl's (e.g. SYS_FAILURE_EN=1); repeatable")
+      ->type_name("NAME=VALUE")->group(link);
+  sub->add_option("--px4-speed", opt->px4_speed,
+                  "With --px4: lockstep at K times real time in both hitl and PX4 (--speed K and PX4_SIM_SPEED_FACTOR=K)")
+      ->check(positive_number())->type_name("K")->group(link);
+  sub->add_option("--px4-timeout", opt->px4_timeout_s, "With --px4: end the session when PX4 has not connected within S seconds")
+      ->capture_default_str()->check(positive_number())->type_name("S")->group(link);
   sub->add_option("--sysid", opt->sysid, "System id of the simulator's HEARTBEAT and frames")
       ->capture_default_str()->check(number_in(1, 255))->group(link);
   sub->add_option("--compid", opt->compid, "Component id of the simulator")->capture_default_str()->check(number_in(1, 255))->group(link);
@@ -343,8 +390,11 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
       ->type_name("FILE.html")->group(route);
   // Through adb the board's ports are the relay's; an address for them would be ignored.
   for (const char* adb_name : {"--adb", "--adb-serial"})
-    for (const char* other : {"--target-ip", "--hil-port", "--vio-ip", "--vio-port", "--px4-sitl"})
+    for (const char* other : {"--target-ip", "--hil-port", "--vio-ip", "--vio-port", "--px4-sitl", "--px4"})
       sub->get_option(adb_name)->excludes(sub->get_option(other));
+  // --px4 names the flight stack and its links: a board's or a user-started PX4's are not asked for.
+  for (const char* other : {"--px4-sitl", "--target-ip", "--hil-port", "--local-port"})
+    sub->get_option("--px4")->excludes(sub->get_option(other));
   sub->callback([&options, &state, opt, px4_sitl]() {
     opt->px4_sitl_given = px4_sitl->count() > 0;  // also when given bare: `--px4-sitl` means tcp:4560
     state.exit_code = run_sim(options, *opt);

@@ -39,11 +39,22 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   if (auto st = check_step_divides_sensor_periods(config.world.physics.step_s, vehicle); !st) return st.error();
 
   // s.config, not config: the parts keep a reference to it.
-  auto peer = StackPeer::decide(s.config);
-  if (!peer) return peer.error();
-  auto stack = StackLink::open(s.config, std::move(peer.value()), s.messages, s.traffic, s.recording, s.clock);
-  if (!stack) return stack.error();
-  s.stack = std::move(stack.value());
+  if (s.config.px4) {  // --px4: the stack link of the first free PX4 instance; PX4 starts in run()
+    auto open_stack = [&s](const px4::Px4Instance& instance) -> Expected<std::unique_ptr<StackLink>> {
+      auto peer = StackPeer::decide(s.config, instance);
+      if (!peer) return peer.error();
+      return StackLink::open(s.config, std::move(peer.value()), s.messages, s.traffic, s.recording, s.clock);
+    };
+    auto launch = Px4Launch::claim(s.config, open_stack, s.stack);
+    if (!launch) return launch.error();
+    s.px4 = std::move(launch.value());
+  } else {
+    auto peer = StackPeer::decide(s.config);
+    if (!peer) return peer.error();
+    auto stack = StackLink::open(s.config, std::move(peer.value()), s.messages, s.traffic, s.recording, s.clock);
+    if (!stack) return stack.error();
+    s.stack = std::move(stack.value());
+  }
   auto services = ClientServices::open(s.config, s.messages, *s.stack, s.traffic, s.recording);
   if (!services) return services.error();
   s.services = std::move(services.value());
@@ -84,7 +95,7 @@ std::string Session::describe() const {
   const auto& c = impl_->config;
   char speed[64];
   std::snprintf(speed, sizeof speed, c.speed > 0 ? ", speed %gx" : ", as fast as possible", c.speed);
-  return impl_->stack->describe() + impl_->services->describe() + speed;
+  return impl_->stack->describe() + (impl_->px4 ? impl_->px4->describe() : "") + impl_->services->describe() + speed;
 }
 
 namespace {
@@ -104,12 +115,31 @@ void ask_for_realtime(EventSink& events) {
 
 Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observer& observer) {
   Impl& s = *impl_;
+  if (s.px4) {
+    if (auto started = s.px4->start(observer); !started) return started.error();
+  }
+  auto end = s.run_steps(stop, observer);
+  if (s.px4) {
+    if (auto said = s.px4->check(observer, s.stack->connected()); said && end) end = *said;  // PX4 ended it as it ended
+    s.px4->stop(s.stack->actuators().ever_received(), observer);
+  }
+  return end;
+}
+
+Expected<Session::EndReason> Session::Impl::run_steps(const std::atomic<bool>& stop, Session::Observer& observer) {
+  Impl& s = *this;
   if (!s.config.noise)
     observer.on_event({Severity::Warning,
                        "--no-noise: PX4 marks a sensor stale after ~100 identical values, so a flight stack on the "
                        "other end will refuse to arm; use it for tests only"});
   if (s.config.realtime) ask_for_realtime(observer);
-  if (!s.stack->wait_until_connected(stop, observer)) return EndReason::Stopped;
+  if (auto connected = s.stack->wait_until_connected(stop, observer, [&s, &observer]() -> std::optional<Error> {
+        return s.px4 ? s.px4->check(observer, s.stack->connected()) : std::nullopt;
+      });
+      !connected)
+    return connected.error();
+  else if (!*connected)
+    return EndReason::Stopped;
   // The default 50 us timer slack would show up as jitter in every HIL_SENSOR interval.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   s.start_wall_s = monotonic_s();
@@ -117,6 +147,7 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
   s.pacer->start();
   double next_status_s = s.start_wall_s + 1.0;
   double next_publish_s = s.start_wall_s;
+  double next_px4_check_s = s.start_wall_s;
   EndReason reason = EndReason::Stopped;
   for (;;) {
     if (stop.load()) break;
@@ -137,6 +168,13 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       reason = EndReason::FlightStackGone;
       break;
     }
+    if (s.px4 && (s.stack->gone() || monotonic_s() >= next_px4_check_s)) {  // PX4's console, and whether it still runs
+      next_px4_check_s = monotonic_s() + 0.1;
+      if (auto ended = s.px4->check(observer, s.stack->connected(), s.stack->gone())) {
+        s.publish();
+        return *ended;
+      }
+    }
     if (s.stack->gone()) {
       observer.on_event({Severity::Error, s.stack->peer().lost_text()});
       reason = EndReason::FlightStackGone;
@@ -151,7 +189,12 @@ Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observe
       next_status_s += 1.0;
       s.roll_window();
       s.publish();
-      observer.on_status(snapshot());
+      SessionSnapshot copy;
+      {
+        std::lock_guard<std::mutex> lock(s.snapshot_mutex);
+        copy = s.published;
+      }
+      observer.on_status(copy);
     }
     s.wait_next_tick(stop);
   }

@@ -16,6 +16,7 @@
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
 #include "engine/net/link_spec.h"
+#include "engine/px4/px4_process.h"
 #include "engine/sensors/unit_set.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/vehicle/trajectory_pilot.h"
@@ -39,7 +40,19 @@ using ::hitl::kSimulatorComponentId;  // the session's identity and status: base
 using ::hitl::kSimulatorSystemId;
 using ::hitl::kVioComponentId;
 
+/// hitl sim --px4: a PX4 SITL build that the session starts, owns and stops (engine/hil/px4_launch.h).
+struct Px4Options {
+  std::string dir;                    ///< --px4 DIR: a build folder (bin/px4, etc/) or a PX4 tree with build/px4_sitl_default
+  std::vector<px4::Px4Param> params;  ///< --px4-param NAME=VALUE, over the vehicle's (px4/vehicle_params.h)
+  double connect_timeout_s = 30;      ///< --px4-timeout: PX4 must connect to the simulator port within this
+  /// PX4's working folder (its parameters, logs and ULogs stay there); empty: beside the recording
+  /// (FILE.px4/) or a new $TMPDIR/hitl-px4-XXXXXX
+  std::string work_dir;
+};
+
 struct SessionConfig {
+  /// --px4: PX4 SITL that the session starts (its simulator link is then the instance's TCP port)
+  std::optional<Px4Options> px4;
   /// --px4-sitl: PX4 SITL's simulator link instead of a board (stack_peer.h decides what follows)
   std::optional<net::LinkSpec> px4_sitl;
   std::string target_ip = "127.0.0.1";   ///< -i / --target-ip / --mavlink-addr

@@ -12,6 +12,7 @@
 #include "engine/hil/loop_latency.h"
 #include "engine/hil/pacer.h"
 #include "engine/hil/pause_clock.h"
+#include "engine/hil/px4_launch.h"
 #include "engine/hil/recording.h"
 #include "engine/vehicle/pilot_record.h"
 #include "engine/hil/session.h"
@@ -40,6 +41,7 @@ struct Session::Impl {
   std::optional<vehicle::PilotRecord> pilot_record;  ///< -t with --record: the pilot's setpoints, errors and states
   PauseClock clock;
   std::unique_ptr<StackLink> stack;         ///< the board or PX4 SITL, lockstep
+  std::unique_ptr<Px4Launch> px4;           ///< --px4: the PX4 this session starts and stops (else null)
   std::unique_ptr<ClientServices> services;  ///< client port, status, truth, VIO
   std::optional<Pacer> pacer;
   std::optional<DataPaths> paths;
@@ -102,6 +104,8 @@ struct Session::Impl {
   SessionStatus status(double now_s) const;
   void publish();
   void roll_window();
+  /// The steps from start to end (Session::run around it starts and stops an owned PX4).
+  Expected<Session::EndReason> run_steps(const std::atomic<bool>& stop, Session::Observer& observer);
   /// The pacer's wait for the next tick, waking for the HIL link's held datagrams as they fall due.
   void wait_next_tick(const std::atomic<bool>& stop);
 };

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "base/common/clock.h"
+#include "base/mavlink/heartbeat.h"
 #include "base/mavlink/messages.h"
 #include "engine/net/open_link.h"
 
@@ -22,24 +23,35 @@ Expected<std::unique_ptr<StackLink>> StackLink::open(const SessionConfig& config
                                                      Traffic& traffic, Recording& recording, const PauseClock& clock) {
   auto link = net::open_link(peer.link(), peer.link_settings());
   if (!link) return link.error();
-  return std::unique_ptr<StackLink>(
-      new StackLink(config, std::move(peer), std::move(link.value()), messages, traffic, recording, clock));
+  std::unique_ptr<net::Link> telemetry;
+  if (const auto spec = peer.telemetry_link()) {
+    auto opened = net::open_link(*spec, peer.telemetry_link_settings());
+    if (!opened) return opened.error();
+    telemetry = std::move(opened.value());
+  }
+  return std::unique_ptr<StackLink>(new StackLink(config, std::move(peer), std::move(link.value()), std::move(telemetry),
+                                                  messages, traffic, recording, clock));
 }
 
 StackLink::StackLink(const SessionConfig& config, StackPeer peer, std::unique_ptr<net::Link> link,
-                     const mavlink::MessageSet& messages, Traffic& traffic, Recording& recording, const PauseClock& clock)
+                     std::unique_ptr<net::Link> telemetry, const mavlink::MessageSet& messages, Traffic& traffic,
+                     Recording& recording, const PauseClock& clock)
     : config_(config),
       peer_(std::move(peer)),
       link_(std::move(link)),
       encoder_(config.sysid, config.compid, config.protocol),
       parser_(messages),
+      telemetry_(std::move(telemetry)),
+      telemetry_encoder_(config.sysid, config.compid, config.protocol),
+      telemetry_parser_(messages),
       traffic_(traffic),
       recording_(recording),
       clock_(clock),
       actuators_(config.actuator_timeout_s),
       link_faults_(config.seed, "hil-drop") {}
 
-bool StackLink::wait_until_connected(const std::atomic<bool>& stop, EventSink& events) {
+Expected<bool> StackLink::wait_until_connected(const std::atomic<bool>& stop, EventSink& events,
+                                               const std::function<std::optional<Error>()>& give_up) {
   if (!peer_.connects_in()) return true;
   const std::string local = link_->local_address() ? link_->local_address()->to_string() : "?";
   events.on_event({Severity::Info, std::string("waiting for ") + peer_.name() + " to connect to TCP " + local + "; " + peer_.start_hint()});
@@ -47,6 +59,9 @@ bool StackLink::wait_until_connected(const std::atomic<bool>& stop, EventSink& e
   double next_note_s = wait_start_s + 10.0;
   while (!link_->wait_connected(200)) {
     if (stop.load()) return false;
+    if (give_up) {
+      if (auto e = give_up()) return *e;
+    }
     if (monotonic_s() >= next_note_s) {
       next_note_s += 10.0;
       events.on_event({Severity::Info, std::string("still waiting for ") + peer_.name() + " on TCP " + std::to_string(link_->local_address()->port()) +
@@ -69,11 +84,29 @@ void StackLink::queue(std::span<const uint8_t> bytes, std::optional<uint32_t> co
 }
 
 void StackLink::forward(std::span<const uint8_t> bytes) {
-  queue(bytes, std::nullopt);
   ++routed_to_board_;
+  if (!telemetry_) return queue(bytes, std::nullopt);
+  recording_.record(bytes);
+  if (!telemetry_->has_room_for(bytes.size())) (void)telemetry_->flush();
+  telemetry_->queue(bytes);
+}
+
+void StackLink::flush_telemetry() {
+  const double now_s = monotonic_s();
+  if (now_s >= next_telemetry_heartbeat_s_) {
+    next_telemetry_heartbeat_s_ = now_s + 1.0;
+    mavlink::FrameBuffer buf;
+    if (const std::size_t n = telemetry_encoder_.encode(mavlink::simulator_heartbeat(), buf)) {
+      if (!telemetry_->has_room_for(n)) (void)telemetry_->flush();
+      telemetry_->queue({buf.data(), n});
+    }
+  }
+  if (telemetry_->queued_bytes() == 0) return;
+  if (const auto st = telemetry_->flush(); !st) traffic_.count_failed(1, st.error().message);
 }
 
 void StackLink::flush() {
+  if (telemetry_) flush_telemetry();
   if (link_faults_.holding()) {
     link_faults_.close_datagram(monotonic_s());
     release_delayed(monotonic_s());
@@ -129,6 +162,16 @@ void StackLink::drain(double now_s, const FrameHandler& on_frame) {
           c.self.actuators_.on_message(f.as<mavlink::msg::HilActuatorControls>(), f.sysid, c.self.clock_.unpaused_s(c.now_s));
       },
       kMaxDatagramsPerDrain);
+  if (!telemetry_) return;
+  telemetry_->drain(
+      telemetry_parser_,
+      [&c](const mavlink::Frame& f) {
+        if (is_hil_message(f.msgid)) return;  // the HIL messages belong to the simulator link
+        c.self.recording_.record(f.bytes());
+        c.self.traffic_.count_received(f.msgid);
+        c.on_frame(f, c.now_s);
+      },
+      kMaxDatagramsPerDrain);
 }
 
 void StackLink::on_hil_sensor_sent(double wall_s) {
@@ -142,7 +185,11 @@ std::string StackLink::peer_text() const {
 std::string StackLink::describe() const {
   const std::string local = link_->local_address() ? link_->local_address()->to_string() : "?";
   const char* lockstep = peer_.lockstep() ? " (lockstep)" : "";
-  if (peer_.connects_in()) return std::string("serving ") + peer_.name() + " on TCP " + local + lockstep;
+  if (peer_.connects_in()) {
+    std::string out = std::string("serving ") + peer_.name() + " on TCP " + local + lockstep;
+    if (telemetry_ && telemetry_->peer()) out += ", its GCS MAVLink at UDP " + telemetry_->peer()->to_string();
+    return out;
+  }
   return "HIL_SENSOR/HIL_GPS to " + peer_text() + " from " + local + lockstep;
 }
 

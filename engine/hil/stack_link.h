@@ -48,8 +48,10 @@ class StackLink {
                                                    Traffic& traffic, Recording& recording, const PauseClock& clock);
 
   /// A stack that connects in (StackPeer::connects_in()): waits for it (saying how, and every 10 s
-  /// how long); false when stopped. True at once for any other.
-  bool wait_until_connected(const std::atomic<bool>& stop, EventSink& events);
+  /// how long); false when stopped; `give_up`'s Error (asked every 200 ms: an owned PX4 that exited
+  /// or did not connect in time) ends the wait. True at once for any other.
+  Expected<bool> wait_until_connected(const std::atomic<bool>& stop, EventSink& events,
+                                      const std::function<std::optional<Error>()>& give_up = {});
 
   // --- sending: queued into one datagram (or one TCP write) per step, sent by flush() ---------
   template <class M>
@@ -57,7 +59,8 @@ class StackLink {
     mavlink::FrameBuffer buf;
     if (const std::size_t n = encoder_.encode(message, buf)) queue({buf.data(), n}, M::kId);
   }
-  /// A frame from elsewhere (a client, the trajectory pilot) to the flight stack.
+  /// A frame from elsewhere (a client, the trajectory pilot) to the flight stack: on the HIL link,
+  /// or on the stack's telemetry link when it has one (StackPeer::telemetry_link()).
   void forward(std::span<const uint8_t> bytes);
   void flush();
   // --- the HIL link's faults (link_faults.h) ---------------------------------------------------
@@ -70,8 +73,8 @@ class StackLink {
   std::vector<std::string> take_send_errors() { return link_->take_send_errors(); }
 
   // --- receiving -------------------------------------------------------------------------------
-  /// Reads what arrived (at most kMaxDatagramsPerDrain datagrams): actuator answers into
-  /// actuators(), every frame to `on_frame`.
+  /// Reads what arrived (at most kMaxDatagramsPerDrain datagrams on each link): actuator answers
+  /// into actuators(), every frame (also the telemetry link's) to `on_frame`.
   void drain(double now_s, const FrameHandler& on_frame);
 
   // --- lockstep ------------------------------------------------------------------------------
@@ -94,6 +97,8 @@ class StackLink {
   ActuatorInput& actuators() { return actuators_; }
   const ActuatorInput& actuators() const { return actuators_; }
   const net::Link& link() const { return *link_; }
+  /// The stack's telemetry link (PX4 that hitl started: its GCS instance), or null.
+  const net::Link* telemetry_link() const { return telemetry_.get(); }
   const mavlink::ParserStats& parser_stats() const { return parser_.stats(); }
   const LockstepCounters& lockstep_counters() const { return lockstep_counters_; }
   uint64_t routed_to_board() const { return routed_to_board_; }
@@ -103,8 +108,11 @@ class StackLink {
   static constexpr std::size_t kMaxDatagramsPerDrain = 256;
 
  private:
-  StackLink(const SessionConfig& config, StackPeer peer, std::unique_ptr<net::Link> link, const mavlink::MessageSet& messages,
-            Traffic& traffic, Recording& recording, const PauseClock& clock);
+  StackLink(const SessionConfig& config, StackPeer peer, std::unique_ptr<net::Link> link, std::unique_ptr<net::Link> telemetry,
+            const mavlink::MessageSet& messages, Traffic& traffic, Recording& recording, const PauseClock& clock);
+  /// The telemetry link's frames out, with a HEARTBEAT once a second so that the stack learns
+  /// where to send (PX4's UDP MAVLink answers the address it last heard).
+  void flush_telemetry();
   void queue(std::span<const uint8_t> bytes, std::optional<uint32_t> counted_id);
   /// Sends what the link holds as one datagram and counts its messages (batch_).
   void send_batch();
@@ -116,6 +124,10 @@ class StackLink {
   std::unique_ptr<net::Link> link_;
   mavlink::FrameEncoder encoder_;  ///< the HIL link's sequence
   mavlink::FrameParser parser_;
+  std::unique_ptr<net::Link> telemetry_;    ///< StackPeer::telemetry_link(), or null
+  mavlink::FrameEncoder telemetry_encoder_;  ///< its own sequence (the HEARTBEAT)
+  mavlink::FrameParser telemetry_parser_;
+  double next_telemetry_heartbeat_s_ = 0;
   Traffic& traffic_;
   Recording& recording_;
   const PauseClock& clock_;

@@ -37,9 +37,26 @@ Expected<net::LinkSpec> parse_px4_sitl(std::string_view text, const std::string&
   return spec;
 }
 
-Expected<StackPeer> StackPeer::decide(const SessionConfig& config) {
+Expected<StackPeer> StackPeer::decide(const SessionConfig& config, const std::optional<px4::Px4Instance>& owned) {
   net::LinkSettings settings;
   settings.bind_address = config.bind_address;
+  if (owned) {
+    net::LinkSpec sim;  // PX4 connects to 127.0.0.1 (PX4_SIM_HOSTNAME unset), so hitl listens there only
+    sim.kind = net::LinkSpec::Kind::TcpIn;
+    sim.host = "127.0.0.1";
+    sim.port = owned->simulator_tcp_port();
+    sim.text = sim.to_string();
+    settings.bind_address = "127.0.0.1";
+    settings.name = "PX4's simulator port (instance " + std::to_string(owned->index) + ")";
+    settings.max_clients = 1;
+    StackPeer peer(Flavour::Px4Owned, true, std::move(sim), std::move(settings));
+    peer.instance_ = owned;
+    peer.telemetry_settings_.name = "PX4's GCS MAVLink port (instance " + std::to_string(owned->index) + ")";
+    peer.telemetry_settings_.host_what = "PX4's GCS port";
+    peer.telemetry_settings_.bind_address = "127.0.0.1";
+    peer.telemetry_settings_.hear_peer_only = true;  // PX4 answers from its GCS port
+    return peer;
+  }
   if (!config.px4_sitl) {
     net::LinkSpec board;
     board.kind = net::LinkSpec::Kind::Udp;
@@ -50,7 +67,7 @@ Expected<StackPeer> StackPeer::decide(const SessionConfig& config) {
     settings.host_what = "-i (the board's address)";
     settings.local_port = config.local_port;
     settings.hear_peer_only = true;  // PX4 answers from its own port; anything else is not our board
-    return StackPeer(false, config.lockstep, std::move(board), std::move(settings));
+    return StackPeer(Flavour::Board, config.lockstep, std::move(board), std::move(settings));
   }
   const net::LinkSpec& sitl = *config.px4_sitl;
   if (sitl.kind == net::LinkSpec::Kind::Udp) {
@@ -64,17 +81,30 @@ Expected<StackPeer> StackPeer::decide(const SessionConfig& config) {
   } else {
     return Error::input("--px4-sitl '" + sitl.text + "': PX4 SITL's simulator link is tcpin:[HOST:]PORT or udp:HOST:PORT");
   }
-  return StackPeer(true, true, sitl, std::move(settings));
+  return StackPeer(Flavour::Px4Sitl, true, sitl, std::move(settings));
+}
+
+std::optional<net::LinkSpec> StackPeer::telemetry_link() const {
+  if (flavour_ != Flavour::Px4Owned || !instance_) return std::nullopt;
+  net::LinkSpec gcs;
+  gcs.kind = net::LinkSpec::Kind::Udp;
+  gcs.host = "127.0.0.1";
+  gcs.port = instance_->gcs_udp_port();
+  gcs.text = gcs.to_string();
+  return gcs;
 }
 
 std::string StackPeer::start_hint() const {
-  if (!sitl_) return "start the flight stack now";
+  if (flavour_ == Flavour::Board) return "start the flight stack now";
+  if (flavour_ == Flavour::Px4Owned) return "hitl started it as instance " + std::to_string(instance_ ? instance_->index : 0);
   return "start PX4 now, in its build tree: PX4_SYS_AUTOSTART=10016 PX4_SIM_MODEL=none_iris build/px4_sitl_default/bin/px4 "
          "(docs/sim.md adds the x500 geometry as PX4_PARAM_ variables)";
 }
 
 std::string StackPeer::no_answer_cause(const std::string& peer, double warning_s) const {
-  if (sitl_)
+  if (flavour_ == Flavour::Px4Owned)
+    return "no HIL_ACTUATOR_CONTROLS from the PX4 hitl started yet; still sending (its console says why)";
+  if (flavour_ == Flavour::Px4Sitl)
     return "no HIL_ACTUATOR_CONTROLS from PX4 SITL yet; still sending. Is PX4 started with a simulator "
            "airframe (e.g. 10016 none_iris)?";
   return "no HIL_ACTUATOR_CONTROLS from " + peer + " within " + std::to_string(static_cast<int>(warning_s)) +
@@ -84,6 +114,7 @@ std::string StackPeer::no_answer_cause(const std::string& peer, double warning_s
 }
 
 std::string StackPeer::lost_text() const {
+  if (flavour_ == Flavour::Px4Owned) return "PX4 closed the simulator link; this session ends";
   return std::string(name()) + " disconnected; PX4 never reconnects to a simulator, so this session ends (restart PX4 and "
                                "hitl sim together)";
 }

@@ -10,6 +10,10 @@
 //   PX4 SITL        simulator_mavlink (--px4-sitl): PX4 connects to hitl's TCP port (tcpin:4560),
 //                   or hitl sends to its UDP port (udp:HOST:PORT); always lockstep on the
 //                   HIL_SENSOR's time; silent for its first ~1.1 s; over TCP it never reconnects
+//   PX4 that hitl started (--px4 DIR, px4_launch.h): PX4 SITL as instance N, connecting to TCP
+//                   127.0.0.1:4560+N; besides, its GCS MAVLink instance (UDP 18570+N) carries the
+//                   session's client traffic both ways (commands, the pilot's sticks, PX4's
+//                   HEARTBEAT for the mode), as a board's HIL link does
 #pragma once
 
 #include <string>
@@ -19,6 +23,7 @@
 #include "engine/hil/session_config.h"
 #include "engine/net/link_spec.h"
 #include "engine/net/open_link.h"
+#include "engine/px4/px4_instance.h"
 
 namespace hitl::hil {
 
@@ -35,8 +40,9 @@ enum class AnswerClock {
 
 class StackPeer {
  public:
-  /// Decided from --px4-sitl (none: a board at -i).
-  static Expected<StackPeer> decide(const SessionConfig& config);
+  /// Decided from --px4-sitl (none: a board at -i), or PX4 that this session started as instance
+  /// `owned` (--px4: the caller claims the instance, px4_launch.h).
+  static Expected<StackPeer> decide(const SessionConfig& config, const std::optional<px4::Px4Instance>& owned = {});
 
   // --- the link ------------------------------------------------------------------------------
   const net::LinkSpec& link() const { return link_; }
@@ -49,19 +55,25 @@ class StackPeer {
   bool link_tells_loss() const { return link_.stream(); }
   /// The link takes the session's client traffic (commands, a trajectory's sticks) besides HIL
   /// messages; PX4 SITL's TCP simulator link takes HIL messages only.
-  bool carries_client_traffic() const { return !(sitl_ && link_.stream()); }
+  bool carries_client_traffic() const { return flavour_ != Flavour::Px4Sitl || !link_.stream(); }
+  /// The stack's own MAVLink link beside the HIL link, which then carries the client traffic and
+  /// what the stack says (HEARTBEAT, STATUSTEXT, ...): PX4 that hitl started, its GCS instance.
+  std::optional<net::LinkSpec> telemetry_link() const;
+  const net::LinkSettings& telemetry_link_settings() const { return telemetry_settings_; }
+  /// The session started the stack and stops it at the end (px4_launch.h).
+  bool owned() const { return flavour_ == Flavour::Px4Owned; }
 
   // --- time ----------------------------------------------------------------------------------
   /// Every step waits for the answer to its HIL_SENSOR (PX4 SITL always; a board with --lockstep).
   bool lockstep() const { return lockstep_; }
   /// Answers from the first HIL_SENSOR (a board): lockstep waits for that first answer once.
   /// PX4 SITL is silent for its first ~1.1 s: the steps go on until it answers.
-  bool answers_first_sensor() const { return !sitl_; }
-  AnswerClock answer_clock() const { return sitl_ ? AnswerClock::SensorTime : AnswerClock::OwnOrSensor; }
+  bool answers_first_sensor() const { return flavour_ == Flavour::Board; }
+  AnswerClock answer_clock() const { return flavour_ == Flavour::Board ? AnswerClock::OwnOrSensor : AnswerClock::SensorTime; }
 
   // --- words ---------------------------------------------------------------------------------
   /// "PX4 SITL" / "the board".
-  const char* name() const { return sitl_ ? "PX4 SITL" : "the board"; }
+  const char* name() const { return flavour_ == Flavour::Board ? "the board" : "PX4 SITL"; }
   /// What to start while the session waits for it to connect (connects_in()).
   std::string start_hint() const;
   /// Why nothing answered the first HIL_SENSORs; `peer` the address, `warning_s` how long it waited.
@@ -70,10 +82,13 @@ class StackPeer {
   std::string lost_text() const;
 
  private:
-  StackPeer(bool sitl, bool lockstep, net::LinkSpec link, net::LinkSettings settings)
-      : sitl_(sitl), lockstep_(lockstep), link_(std::move(link)), settings_(std::move(settings)) {}
+  enum class Flavour { Board, Px4Sitl, Px4Owned };
+  StackPeer(Flavour flavour, bool lockstep, net::LinkSpec link, net::LinkSettings settings)
+      : flavour_(flavour), lockstep_(lockstep), link_(std::move(link)), settings_(std::move(settings)) {}
 
-  bool sitl_ = false;  ///< the flavour: asked here only
+  Flavour flavour_ = Flavour::Board;  ///< asked here only
+  std::optional<px4::Px4Instance> instance_;  ///< Px4Owned: the instance hitl started
+  net::LinkSettings telemetry_settings_;
   bool lockstep_ = false;
   net::LinkSpec link_;
   net::LinkSettings settings_;
