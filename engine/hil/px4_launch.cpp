@@ -135,10 +135,17 @@ std::optional<Error> Px4Launch::check(EventSink& events, bool connected, bool li
   std::size_t shown = 0;
   for (const auto& line : process_->console().new_lines()) {
     if (const auto name = unknown_parameter(line)) {
-      for (const auto& p : options_.params)
-        if (p.name == *name && !refused_)
+      bool ours = false;
+      for (const auto& p : options_.params) {
+        if (p.name != *name) continue;
+        ours = true;
+        if (!refused_)
           refused_ = Error::input("PX4 " + build_.version + " has no parameter " + *name + " (set as " + p.name + "=" +
                                   p.value + ", --px4-param)");
+      }
+      // PX4's own start script sets the parameters of modules this build left out (scripts/px4-sitl.sh:
+      // UXRCE_DDS_*, IMU_GYRO_FFT_EN): harmless, and kept in the console file only.
+      if (!ours) continue;
     }
     const auto severity = px4::px4_console_severity(line);
     if (!severity) continue;

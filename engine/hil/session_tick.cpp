@@ -168,6 +168,7 @@ void Session::Impl::fly_pilot(const model::VehicleState& state, EventSink& event
   mavlink::FrameBuffer buf;
   for (const auto& c : out.commands) stack->forward({buf.data(), pilot_encoder.encode(c, buf)});
   if (out.rc) stack->forward({buf.data(), pilot_encoder.encode(*out.rc, buf)});
+  if (out.manual) stack->forward({buf.data(), pilot_encoder.encode(*out.manual, buf)});
   if (out.event) events.on_event({pilot->state() == vehicle::PilotState::Failed ? Severity::Error : Severity::Info, *out.event});
 }
 

@@ -159,6 +159,7 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
     auto out = flight->step(t_s, estimate, truth);  // the latest LOCAL_POSITION_NED, the latest ATTITUDE's yaw
     for (const auto& c : out.commands) link.send(c);
     if (out.rc) link.send(*out.rc);
+    if (out.manual) link.send(*out.manual);
     if (out.event) note(*out.event);
     if (options.on_tracking_error && out.tracking_error_m) options.on_tracking_error(*out.tracking_error_m);
     if (record && out.reference) record->setpoint(static_cast<uint32_t>(t_s * 1000), *out.reference, out.tracking_error_m);

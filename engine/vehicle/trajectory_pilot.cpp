@@ -93,6 +93,17 @@ msg::CommandLong TrajectoryPilot::command(const CommandRequest& request) const {
   return c;
 }
 
+msg::ManualControl manual_control_for(const msg::RcChannelsOverride& rc) {
+  const auto centred = [](uint16_t pwm_us) { return static_cast<int16_t>(std::clamp((pwm_us - 1500) * 2, -1000, 1000)); };
+  msg::ManualControl m;
+  m.target = rc.target_system;
+  m.x = centred(rc.chan2_raw);
+  m.y = centred(rc.chan1_raw);
+  m.z = static_cast<int16_t>(std::clamp(rc.chan3_raw - 1000, 0, 1000));
+  m.r = centred(rc.chan4_raw);
+  return m;
+}
+
 msg::RcChannelsOverride TrajectoryPilot::sticks(double roll, double pitch, double yaw, double throttle) const {
   msg::RcChannelsOverride rc;
   rc.target_system = config_.target_system;
@@ -103,6 +114,14 @@ msg::RcChannelsOverride TrajectoryPilot::sticks(double roll, double pitch, doubl
   rc.chan4_raw = pwm(yaw);
   for (auto* c : {&rc.chan5_raw, &rc.chan6_raw, &rc.chan7_raw, &rc.chan8_raw}) *c = UINT16_MAX;  // untouched
   return rc;
+}
+
+void TrajectoryPilot::centred_sticks(double t_s, PilotOutput& out) {
+  if (t_s - last_rc_s_ < 1.0 / config_.rc_rate_hz) return;
+  last_rc_s_ = t_s;
+  out.rc = sticks(0, 0, 0, 0.5);
+  out.manual = manual_control_for(*out.rc);
+  last_sticks_ = out.rc;
 }
 
 void TrajectoryPilot::enter(PilotState next, double t_s, PilotOutput& out, const std::string& why) {
@@ -191,13 +210,12 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         failure_ = "the board disarmed during takeoff";
         enter(PilotState::Failed, t_s, out, failure_);
       } else if (std::fabs(pose.p_ENU_m[2] - z0) < config_.takeoff_tolerance_m && takeoff_ack_ == 0) {
-        // Centred sticks first: PX4 takes a manual mode only with manual control present.
-        if (t_s - last_rc_s_ >= 1.0 / config_.rc_rate_hz) {
-          last_rc_s_ = t_s;
-          out.rc = sticks(0, 0, 0, 0.5);
-        }
+        // Centred sticks first: PX4 takes a manual mode only once its manual control input is
+        // valid, which PX4 SITL (MANUAL_CONTROL) judged only after several samples: a second of them.
+        if (centred_since_s_ < 0) centred_since_s_ = t_s;
+        centred_sticks(t_s, out);
         const bool attitude = config_.mode == StickMode::Attitude;
-        if (!mode_set_ && resend && in_state_s > 0.2) {
+        if (!mode_set_ && resend && t_s - centred_since_s_ >= kCentredBeforeMode_s) {
           out.commands.push_back(command(set_mode_request(attitude ? kPx4Stabilized : kPx4Position)));
           last_command_s_ = t_s;
         }
@@ -233,10 +251,19 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         last_rc_s_ = t_s;
         last_rc_t_s_ = t_s;
         out.rc = config_.mode == StickMode::Attitude ? attitude_sticks(ref, pose, dt_s) : velocity_sticks(ref, pose);
+        out.manual = manual_control_for(*out.rc);
+        last_sticks_ = out.rc;
       }
       break;
     }
     case PilotState::Land:
+      // The last sticks held as they were: the manual control input stays valid (no stick-loss
+      // failsafe), and sticks that do not move are no pilot taking over (PX4's COM_RC_OVERRIDE).
+      if (armed_ && last_sticks_ && t_s - last_rc_s_ >= 1.0 / config_.rc_rate_hz) {
+        last_rc_s_ = t_s;
+        out.rc = *last_sticks_;
+        out.manual = manual_control_for(*out.rc);
+      }
       if (!armed_) {
         enter(PilotState::Done, t_s, out, "landed and disarmed");
       } else if (resend) {

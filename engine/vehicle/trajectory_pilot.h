@@ -66,9 +66,16 @@ struct PilotPose {
 /// throttle curve with the config's MPC_THR_HOVER / MPC_MANTHR_MIN / MPC_THR_MAX.
 double throttle_for_thrust(double thrust, const PilotConfig& config);
 
+/// RC_CHANNELS_OVERRIDE's sticks (PX4's default map: 1 roll, 2 pitch, 3 throttle, 4 yaw) as
+/// MANUAL_CONTROL (x forward, y right, z thrust 0..1000, r clockwise).
+mavlink::msg::ManualControl manual_control_for(const mavlink::msg::RcChannelsOverride& rc);
+
 struct PilotOutput {
   std::vector<mavlink::msg::CommandLong> commands;
   std::optional<mavlink::msg::RcChannelsOverride> rc;
+  /// The same sticks as MANUAL_CONTROL (PX4's joystick input): PX4 SITL takes only that
+  /// (COM_RC_IN_MODE 1), a board usually RC; PX4 uses whichever its COM_RC_IN_MODE allows.
+  std::optional<mavlink::msg::ManualControl> manual;
   std::optional<std::string> event;  ///< a state change, in words
   /// TRAJECTORY and HOLD: the reference flown this step (ENU from the start; TrajectoryFlight
   /// gives it in the pose's own frame); in TRAJECTORY also the error scored into tracking().
@@ -102,6 +109,8 @@ class TrajectoryPilot {
  private:
   void enter(PilotState next, double t_s, PilotOutput& out, const std::string& why = "");
   mavlink::msg::CommandLong command(const CommandRequest& request) const;
+  /// Centred sticks (RC and MANUAL_CONTROL) at the RC rate.
+  void centred_sticks(double t_s, PilotOutput& out);
   mavlink::msg::RcChannelsOverride sticks(double roll, double pitch, double yaw, double throttle) const;
   mavlink::msg::RcChannelsOverride velocity_sticks(const TrajectoryReference& ref, const PilotPose& pose) const;
   mavlink::msg::RcChannelsOverride attitude_sticks(const TrajectoryReference& ref, const PilotPose& pose, double dt_s);
@@ -124,6 +133,9 @@ class TrajectoryPilot {
   double state_start_s_ = 0;
   double last_command_s_ = -1e9;
   double last_rc_s_ = -1e9;
+  double centred_since_s_ = -1;
+  std::optional<mavlink::msg::RcChannelsOverride> last_sticks_;  ///< the last sticks sent (LAND holds them)  ///< TAKEOFF at height: the first centred sticks sent
+  static constexpr double kCentredBeforeMode_s = 1.0;
   double trajectory_start_s_ = 0;
   bool armed_ = false;
   bool ready_ = false;
