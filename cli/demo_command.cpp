@@ -41,7 +41,11 @@ struct DemoOptions {
   std::string record_path;      ///< --record (empty: demo.tlog in a new directory under $TMPDIR)
   std::string report_path;      ///< --report (empty: demo.html beside the recording)
   bool no_report = false;       ///< --no-report
+  std::string px4_dir;          ///< --px4 DIR: real PX4 SITL, started by hitl, instead of the emulated board
 };
+
+/// --px4 without --speed: lockstep at this factor (a 2-core machine keeps PX4's estimator up to ~8).
+constexpr double kPx4DemoSpeed = 5;
 
 /// A new directory for the demo's recording and report: $TMPDIR/hitl-demo-XXXXXX.
 Expected<std::string> demo_directory() {
@@ -145,7 +149,19 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   board_config.bind_address = "127.0.0.1";
   board_config.lockstep = true;
   hil::SessionConfig session;
+  const bool px4 = !o.px4_dir.empty();
+  if (px4) {  // real PX4, which hitl starts on an instance of its own (engine/hil/px4_launch.h)
+    session.px4 = hil::Px4Options{};
+    session.px4->dir = o.px4_dir;
+    session.vio = false;
+    if (!o.speed_given && !o.tui) o.speed = kPx4DemoSpeed;
+    if (!(o.speed > 0)) {
+      log_error("demo", "--speed 0 with --px4: PX4 runs in lockstep at a stated factor; give --speed K (K <= 8 on 2 cores)");
+      return kExitUsage;
+    }
+  }
   for (uint16_t* port : {&board_config.hil_port, &board_config.gcs_port, &board_config.vio_port, &session.local_port}) {
+    if (px4) break;
     auto p = free_port();
     if (!p) {
       log_error("demo", p.error().message);
@@ -189,24 +205,33 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
     }
   }
 
-  auto board = target::Board::create(board_config);
-  if (!board) {
-    log_error("demo", board.error().message);
-    return exit_code(board.error());
+  std::unique_ptr<target::Board> board;
+  if (!px4) {
+    auto created = target::Board::create(board_config);
+    if (!created) {
+      log_error("demo", created.error().message);
+      return exit_code(created.error());
+    }
+    board = std::move(created.value());
   }
   auto sim = hil::Session::create(session);
   if (!sim) {
     log_error("demo", sim.error().message);
     return exit_code(sim.error());
   }
-  log_info(g, "hitl demo: an emulated VOXL2 board (not PX4) and the Simbody x500 in lockstep, flying " +
-                  (o.trajectory_file.empty() ? std::string("docs/examples/square.json") : o.trajectory_file) +
-                  "; clients on 127.0.0.1:" + std::to_string(session.clients_port) + " (Ctrl-C stops everything)");
+  const std::string flown = o.trajectory_file.empty() ? std::string("docs/examples/square.json") : o.trajectory_file;
+  if (px4)
+    log_info(g, "hitl demo: real PX4 SITL, started by hitl, and the Simbody x500 in lockstep at " + figure(true, "%gx", o.speed) +
+                    ", flying " + flown + "; " + (*sim)->describe() + " (Ctrl-C stops everything)");
+  else
+    log_info(g, "hitl demo: an emulated VOXL2 board (not PX4) and the Simbody x500 in lockstep, flying " + flown +
+                    "; clients on 127.0.0.1:" + std::to_string(session.clients_port) + " (Ctrl-C stops everything)");
 
   const auto& stop = stop_flag_on_signals();
   std::atomic<bool> stop_board{false};
   BoardEvents board_events(g);
-  std::thread board_thread([&] { (void)(*board)->run(stop_board, board_events); });
+  std::thread board_thread;
+  if (board) board_thread = std::thread([&] { (void)board->run(stop_board, board_events); });
 
   // The estimate against the truth, as any client of the session sees it.
   vehicle::LinkOptions link;
@@ -229,13 +254,13 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   const auto estimate = feed.snapshot();
   feed.stop();
   stop_board = true;
-  board_thread.join();
+  if (board_thread.joinable()) board_thread.join();
   if (!end) {
     log_error("demo", end.error().message);
     return exit_code(end.error());
   }
   const auto s = (*sim)->snapshot();
-  const auto b = (*board)->snapshot();
+  const auto b = board ? board->snapshot() : target::BoardSnapshot{};
   const bool done = *end == hil::Session::EndReason::TrajectoryDone;
   const double sim_s = s.sim_time_s;
   const auto& err = estimate.estimate_error;
@@ -267,9 +292,14 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
                                          {"attitude_rms_deg", measured_or_null(err.attitude_samples > 0, err.attitude_rms_deg)},
                                          {"position_samples", err.position_samples},
                                          {"attitude_samples", err.attitude_samples}}},
-                     {"board", {{"hil_sensor_received", b.hil_sensor_received}, {"hil_gps_received", b.hil_gps_received},
-                                {"odometry_received", b.odometry_received}, {"actuators_sent", b.actuators_sent},
-                                {"malformed", b.malformed}}},
+                     {"board", px4 ? nlohmann::json(nullptr)
+                                   : nlohmann::json{{"hil_sensor_received", b.hil_sensor_received},
+                                                    {"hil_gps_received", b.hil_gps_received},
+                                                    {"odometry_received", b.odometry_received},
+                                                    {"actuators_sent", b.actuators_sent}, {"malformed", b.malformed}}},
+                     {"px4", !px4 ? nlohmann::json(nullptr)
+                                  : nlohmann::json{{"instance", s.px4.instance}, {"version", s.px4.version},
+                                                   {"work_dir", s.px4.work_dir}, {"console", s.px4.console}}},
                      {"recording", o.record_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.record_path)},
                      {"report", written ? report_json(*written) : nlohmann::json(nullptr)}});
   } else {
@@ -278,13 +308,17 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
     auto hz = [&](const std::map<std::string, hil::StreamCount>& m, const char* name) {
       return figure(timed, "%.0f Hz", per_sim_second(m, name, sim_s));
     };
-    char text[1024];
+    const std::string flight_stack =
+        px4 ? "PX4 " + s.px4.version + " instance " + std::to_string(s.px4.instance) + " (its console " + s.px4.console +
+                  ", its ULogs in " + s.px4.work_dir + "/log)"
+            : "board: " + std::to_string(b.hil_sensor_received) + " HIL_SENSOR, " + std::to_string(b.malformed) + " malformed";
+    char text[2048];
     std::snprintf(text, sizeof text,
                   "\n%s: %s%s\n"
                   "  tracking error against truth   RMS %s, max %s (%llu samples)\n"
                   "  rates (per simulated second)    HIL_SENSOR %s, HIL_GPS %s, ODOMETRY %s, HIL_ACTUATOR_CONTROLS back %s\n"
                   "  estimate vs truth               horizontal RMS %s, attitude RMS %s\n"
-                  "  simulated %.1f s in %.1f s of wall time; board: %llu HIL_SENSOR, %llu malformed\n",
+                  "  simulated %.1f s in %.1f s of wall time; %s\n",
                   done ? "demo flown" : "demo did not finish", s.trajectory_state.c_str(),
                   s.trajectory_failure.empty() ? "" : (" (" + s.trajectory_failure + ")").c_str(),
                   figure(tracked, "%.2f m", s.trajectory_rms_m).c_str(), figure(tracked, "%.2f m", s.trajectory_max_m).c_str(),
@@ -292,7 +326,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
                   hz(s.sent, "HIL_GPS").c_str(), hz(s.sent, "ODOMETRY").c_str(), hz(s.received, "HIL_ACTUATOR_CONTROLS").c_str(),
                   figure(err.position_samples > 0, "%.2f m", err.horizontal_rms_m).c_str(),
                   figure(err.attitude_samples > 0, "%.2f deg", err.attitude_rms_deg).c_str(), sim_s, s.wall_time_s,
-                  static_cast<unsigned long long>(b.hil_sensor_received), static_cast<unsigned long long>(b.malformed));
+                  flight_stack.c_str());
     std::cout << text << "Next: README.md (a real board, PX4 SITL, the other commands).\n";
     if (!o.record_path.empty()) std::cout << "Recorded in " << o.record_path << (written ? "; the flight drawn:" : "") << '\n';
     if (written) std::cout << written->html_path << '\n';
@@ -321,6 +355,11 @@ void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_option("--report", o->report_path, "Write the flight's report (hitl report) here (default: the recording's name "
                                               "with .html); its path is the last line printed")->type_name("FILE.html");
   sub->add_flag("--no-report", o->no_report, "No report (and no recording unless --record)");
+  sub->add_option("--px4", o->px4_dir,
+                  "Fly it with real PX4 SITL instead of the emulated board: DIR is a PX4 SITL build folder or a PX4 tree "
+                  "with build/px4_sitl_default (scripts/px4-sitl.sh); hitl starts and stops PX4 (docs/sim.md); at 5x "
+                  "real time unless --speed is given")
+      ->type_name("DIR");
   sub->add_flag("--tui", o->tui,
                 "Watch it on the sim dashboard (docs/tui.md), in real time unless --speed is given; the report "
                 "follows when the flight ends or on q. Without a terminal: the status lines");

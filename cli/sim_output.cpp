@@ -81,6 +81,9 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
                   {"max_rebound_m", s.max_rebound_m},
                   {"max_touchdown_speed_m_s", s.max_touchdown_speed_m_s},
                   {"peak_accel_m_s2", s.peak_touchdown_accel_m_s2}};
+  if (s.px4.instance >= 0)
+    j["px4"] = {{"instance", s.px4.instance}, {"version", s.px4.version}, {"build", s.px4.build_dir},
+                {"work_dir", s.px4.work_dir}, {"console", s.px4.console}};
   j["send_errors"] = s.send_errors;
   j["send_error"] = s.last_send_error;
   j["crc_errors"] = s.crc_errors;

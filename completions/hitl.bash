@@ -21,7 +21,7 @@ _hitl_options() {
     case "$1" in
         '') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
         'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise --rangefinder -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --report --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --px4 --px4-param --px4-speed --px4-timeout --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise --rangefinder -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --report --version --json -v --verbose -q --quiet --dialect --config' ;;
         'target') echo '-h --help --bind --hil-port --gcs-port --vio-port --lockstep --duration --fault --version --json -v --verbose -q --quiet --dialect --config' ;;
         'replay') echo '-h --help -i --target-ip --hil-port --vio-port --local-port --bind --lockstep --lockstep-timeout --record --compare --tolerance --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -49,7 +49,7 @@ _hitl_options() {
         'board status') echo '-h --help --adb --adb-serial --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --queue-ms --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --px4 --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
         'report') echo '-h --help -o --output --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
@@ -80,6 +80,10 @@ _hitl_value() {
         'sim|--local-port'|'sim|--mavlink-udp-local-port') echo 'text' ;;
         'sim|--bind') echo 'text' ;;
         'sim|--px4-sitl') echo 'optional text' ;;
+        'sim|--px4') echo 'text' ;;
+        'sim|--px4-param') echo 'text' ;;
+        'sim|--px4-speed') echo 'text' ;;
+        'sim|--px4-timeout') echo 'text' ;;
         'sim|--sysid') echo 'text' ;;
         'sim|--compid') echo 'text' ;;
         'sim|--protocol-version') echo 'choice 1.0 2.0' ;;
@@ -216,6 +220,7 @@ _hitl_value() {
         'demo|--trajectory-mode') echo 'choice attitude velocity' ;;
         'demo|--record') echo 'file *.tlog' ;;
         'demo|--report') echo 'file *.html' ;;
+        'demo|--px4') echo 'text' ;;
         'report|-o'|'report|--output') echo 'file *.html' ;;
     esac
 }

@@ -66,6 +66,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
     vehicle::PilotConfig pc;
     pc.home_alt_msl_m = config.world.home.alt_m;
     pc.mode = config.trajectory_mode;
+    if (s.px4) pc.target_system = s.px4->instance().sysid();  // PX4 instance N is system N+1
     s.pilot.emplace(*config.trajectory, pc);
   }
   if (!config.record_path.empty()) {

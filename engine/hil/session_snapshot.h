@@ -33,6 +33,14 @@ struct SessionSnapshot {
   std::string last_send_error;          ///< the latest refusal in words (errno, likely fix); empty when none
   bool connected = false;               ///< SITL: PX4 connected; board: actuators arriving
   std::string partner;                  ///< the flight stack's address
+  /// --px4: the PX4 this session started (instance -1 without one).
+  struct Px4Started {
+    int instance = -1;
+    std::string version;   ///< "v1.16.0"; empty when the build does not say
+    std::string build_dir;
+    std::string work_dir;  ///< its parameters and ULogs (log/)
+    std::string console;   ///< its console file
+  } px4;
   bool armed = false;
   std::array<double, 4> motor_commands{};
   std::array<double, 4> rotor_speed_rad_s{};

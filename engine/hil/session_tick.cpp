@@ -246,6 +246,7 @@ void Session::Impl::publish() {
   s.loop_latency = loop_latency->summary();
   s.hil_link_faults = stack->link_faults().counts();
   s.vio_link_faults = services->vio_link_faults().counts();
+  if (px4) s.px4 = {px4->instance().index, px4->build().version, px4->build().build_dir, px4->work_dir(), px4->console_path()};
   std::lock_guard<std::mutex> lock(snapshot_mutex);
   published = std::move(s);
 }
