@@ -100,6 +100,7 @@ nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary) 
                        {"rms_m", s.trajectory_rms_m},
                        {"max_m", s.trajectory_max_m}};
   j["active_faults"] = s.active_faults;
+  j["faults_not_started"] = s.pending_faults;
   auto link_json = [](const hil::LinkFaultCounts& c) {
     return nlohmann::json{{"dropped_datagrams", c.dropped}, {"delayed_datagrams", c.delayed},
                           {"reordered_datagrams", c.reordered}, {"duplicated_datagrams", c.duplicated}};
@@ -178,6 +179,7 @@ void print_summary(const hil::SessionSnapshot& s, const char* end) {
     if (r.end_s) std::printf("fault %s: %.3f s to %.3f s\n", given.c_str(), r.start_s, *r.end_s);
     else std::printf("fault %s: from %.3f s to the end\n", given.c_str(), r.start_s);
   }
+  for (const auto& f : s.pending_faults) std::printf("fault %s: never started\n", f.c_str());
   for (const auto& [name, c] : {std::pair{"HIL", s.hil_link_faults}, std::pair{"VIO", s.vio_link_faults}})
     if (c.dropped + c.delayed + c.reordered + c.duplicated > 0)
       std::printf("%s link faults: %llu datagrams dropped, %llu delayed, %llu reordered, %llu duplicated\n", name,

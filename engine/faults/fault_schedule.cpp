@@ -222,6 +222,13 @@ std::size_t FaultSchedule::active_count() const {
   return static_cast<std::size_t>(std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.state == State::Active; }));
 }
 
+std::vector<std::string> FaultSchedule::pending_texts() const {
+  std::vector<std::string> out;
+  for (const auto& e : entries_)
+    if (e.state == State::Pending) out.push_back(e.spec.id.empty() ? label(e.spec) : e.spec.id + " (" + label(e.spec) + ")");
+  return out;
+}
+
 std::vector<std::string> FaultSchedule::active_texts() const {
   std::vector<std::string> out;
   for (const auto& e : entries_)

@@ -139,6 +139,8 @@ class FaultSchedule {
   const std::vector<FaultRecord>& records() const { return records_; }
   /// "gps-loss", "motor:2,0.6" for each active fault.
   std::vector<std::string> active_texts() const;
+  /// The events that have not started (yet): at the session's end, those that never did.
+  std::vector<std::string> pending_texts() const;
   std::size_t active_count() const;
   bool empty() const { return entries_.empty(); }
 

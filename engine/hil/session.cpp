@@ -134,13 +134,27 @@ Expected<Session::EndReason> Session::Impl::run_steps(const std::atomic<bool>& s
                        "--no-noise: PX4 marks a sensor stale after ~100 identical values, so a flight stack on the "
                        "other end will refuse to arm; use it for tests only"});
   if (s.config.realtime) ask_for_realtime(observer);
+  if (!s.stack->peer().reports_mode()) {  // a mode condition could never hold: said before it silently never fires
+    for (const auto& f : s.config.faults) {
+      const bool on_mode = (f.start_when && f.start_when->mode) || (f.end_when && f.end_when->mode);
+      if (on_mode)
+        observer.on_event({Severity::Warning, "fault " + (f.id.empty() ? f.name() : f.id) + ": its 'mode' condition can never hold: " +
+                                                  s.stack->peer().name() + "'s simulator link does not carry PX4's mode "
+                                                  "(PX4 started by hitl sim --px4 does)"});
+    }
+  }
   if (auto connected = s.stack->wait_until_connected(stop, observer, [&s, &observer]() -> std::optional<Error> {
         return s.px4 ? s.px4->check(observer, s.stack->connected()) : std::nullopt;
       });
-      !connected)
+      !connected) {
+    s.start_wall_s = monotonic_s();
+    s.publish();
     return connected.error();
-  else if (!*connected)
+  } else if (!*connected) {  // stopped while waiting: the summary still says what was pending
+    s.start_wall_s = monotonic_s();
+    s.publish();
     return EndReason::Stopped;
+  }
   // The default 50 us timer slack would show up as jitter in every HIL_SENSOR interval.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   s.start_wall_s = monotonic_s();

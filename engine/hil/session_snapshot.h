@@ -92,6 +92,7 @@ struct SessionSnapshot {
   std::string record_error;      ///< --record failed: the file and why (empty: fine, or not recording)
   // faults (docs/faults.md)
   std::vector<std::string> active_faults;  ///< "gps-loss", "motor:2,0.6"
+  std::vector<std::string> pending_faults;  ///< events not started (yet): at the end, never started
   std::vector<faults::FaultRecord> faults; ///< every fault that started, with its start and end
   LinkFaultCounts hil_link_faults;         ///< what the hil-* faults did to datagrams to the flight stack
   LinkFaultCounts vio_link_faults;         ///< what the vio-* link faults did to ODOMETRY

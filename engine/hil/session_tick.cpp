@@ -242,6 +242,7 @@ void Session::Impl::publish() {
                           recent_rtf, traffic, *stack, *services, pacer->stats(), *sensors, touchdowns,
                           pilot ? &*pilot : nullptr, paths->stats(now_s), clock.paused(), resets, recording.error()});
   s.active_faults = fault_schedule.active_texts();
+  s.pending_faults = fault_schedule.pending_texts();
   s.faults = fault_schedule.records();
   s.loop_latency = loop_latency->summary();
   s.hil_link_faults = stack->link_faults().counts();

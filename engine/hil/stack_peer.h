@@ -60,6 +60,9 @@ class StackPeer {
   /// what the stack says (HEARTBEAT, STATUSTEXT, ...): PX4 that hitl started, its GCS instance.
   std::optional<net::LinkSpec> telemetry_link() const;
   const net::LinkSettings& telemetry_link_settings() const { return telemetry_settings_; }
+  /// The stack's mode (PX4's HEARTBEAT) reaches the session: a board's on its HIL link, an owned
+  /// PX4's on its telemetry link; PX4 SITL's simulator link sends one HEARTBEAT, at connect.
+  bool reports_mode() const { return flavour_ != Flavour::Px4Sitl; }
   /// The session started the stack and stops it at the end (px4_launch.h).
   bool owned() const { return flavour_ == Flavour::Px4Owned; }
 

@@ -29,6 +29,7 @@ TEST(FaultsE2E, ScenarioWithGpsLossAndWeakMotorFliesTheSquareAndIsReported) {
   const auto j = nlohmann::json::parse(lines.back());
   EXPECT_EQ(j["end"], "trajectory_done") << sim.err();
   ASSERT_EQ(j["faults"].size(), 2u) << j["faults"].dump();
+  EXPECT_EQ(j["faults_not_started"], nlohmann::json::array()) << j.dump();
   EXPECT_EQ(j["faults"][0]["name"], "gps-loss");
   EXPECT_NEAR(j["faults"][0]["start_s"].get<double>(), 15.0, 1e-6);
   EXPECT_NEAR(j["faults"][0]["end_s"].get<double>(), 23.0, 1e-6);

@@ -76,6 +76,21 @@ TEST_F(Px4Flight, TwoSessionsAtOnceBothFly) {
   expect_clean_square({code_b, second.out(), second.err()}, "second of two at 2x");
 }
 
+TEST_F(Px4Flight, ScenarioConditionsSeePx4sModeFromItsGcsInstance) {
+  // PX4 SITL's simulator link sends one HEARTBEAT; the mode comes from PX4's GCS instance.
+  const std::string scenario = temp_dir() + "/modes.json";
+  {
+    std::ofstream(scenario) << R"({"events": [{"id": "in-takeoff", "when": {"mode": "Takeoff"}, "fault": "imu-noise", "args": [1.5], "duration_s": 1},
+                                              {"id": "in-land", "when": {"mode": "Land"}, "fault": "imu-noise", "args": [1.5], "duration_s": 1},
+                                              {"id": "never", "when": {"mode": "Offboard"}, "fault": "imu-noise", "args": [1.5]}]})";
+  }
+  const auto r = run_hitl(square_args({"--px4-speed", "5", "--scenario", scenario}), 300s);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  ASSERT_EQ(j["faults"].size(), 2u) << j.dump();
+  EXPECT_EQ(j["faults_not_started"], nlohmann::json::array({"never (imu-noise:1.5)"})) << j.dump();
+}
+
 TEST_F(Px4Flight, KillOfHitlLeavesNoPx4) {
   Process sim({hitl_binary(), "sim", "--px4", px4_dir_, "--no-vio", "--clients", "0"});
   ASSERT_TRUE(sim.wait_for_stderr("PX4 SITL connected", 60s)) << sim.err();

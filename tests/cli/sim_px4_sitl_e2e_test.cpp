@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdio>
 #include <memory>
 
 #include "base/mavlink/frame_encoder.h"
@@ -28,6 +29,24 @@ TEST(SimE2E, BarePx4SitlFlagServesTcp4560) {
   EXPECT_EQ(sim.err().find("HIL_SENSOR/HIL_GPS to"), std::string::npos) << sim.err();
   sim.signal(SIGINT);
   sim.wait(10s);
+}
+
+TEST(SimE2E, Px4SitlWarnsThatAModeConditionCanNeverHoldAndTheSummaryListsIt) {
+  // PX4 SITL's simulator link carries PX4's HEARTBEAT once, at connect: a mode condition never holds.
+  const std::string scenario = test::temp_dir() + "/mode.json";
+  {
+    std::FILE* f = std::fopen(scenario.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs(R"({"events": [{"id": "on-hold", "when": {"mode": "Hold"}, "fault": "gps-loss"}]})", f);
+    std::fclose(f);
+  }
+  const uint16_t port = test::free_udp_port();
+  Process sim({test::hitl_binary(), "sim", "--px4-sitl", "tcp:" + std::to_string(port), "--no-vio", "--clients", "0",
+               "--bind", "127.0.0.1", "--scenario", scenario});
+  EXPECT_TRUE(sim.wait_for_stderr("fault on-hold: its 'mode' condition can never hold", 10s)) << sim.err();
+  sim.signal(SIGINT);
+  sim.wait(10s);
+  EXPECT_NE(sim.out().find("fault on-hold (gps-loss): never started"), std::string::npos) << sim.out();
 }
 
 /// `hitl sim --px4-sitl tcp:PORT`, unpaced, waiting for PX4 to connect.
