@@ -42,7 +42,6 @@ StackLink::StackLink(const SessionConfig& config, StackPeer peer, std::unique_pt
       encoder_(config.sysid, config.compid, config.protocol),
       parser_(messages),
       telemetry_(std::move(telemetry)),
-      telemetry_encoder_(config.sysid, config.compid, config.protocol),
       telemetry_parser_(messages),
       traffic_(traffic),
       recording_(recording),
@@ -96,7 +95,9 @@ void StackLink::flush_telemetry() {
   if (now_s >= next_telemetry_heartbeat_s_) {
     next_telemetry_heartbeat_s_ = now_s + 1.0;
     mavlink::FrameBuffer buf;
-    if (const std::size_t n = telemetry_encoder_.encode(mavlink::simulator_heartbeat(), buf)) {
+    // The HIL link's encoder: one sequence for the session's identity, so that a recording of both
+    // links shows no false loss (PX4 numbers its two MAVLink instances apart; that one stays).
+    if (const std::size_t n = encoder_.encode(mavlink::simulator_heartbeat(), buf)) {
       if (!telemetry_->has_room_for(n)) (void)telemetry_->flush();
       telemetry_->queue({buf.data(), n});
     }

@@ -125,7 +125,6 @@ class StackLink {
   mavlink::FrameEncoder encoder_;  ///< the HIL link's sequence
   mavlink::FrameParser parser_;
   std::unique_ptr<net::Link> telemetry_;    ///< StackPeer::telemetry_link(), or null
-  mavlink::FrameEncoder telemetry_encoder_;  ///< its own sequence (the HEARTBEAT)
   mavlink::FrameParser telemetry_parser_;
   double next_telemetry_heartbeat_s_ = 0;
   Traffic& traffic_;

@@ -67,8 +67,16 @@ std::string without_colour_codes(std::string_view line) {
   return out;
 }
 
+std::string without_shell_prompt(std::string line) {
+  // A MAVLink shell (hitl shell) writes PX4's prompt into the console: "pxh> ERROR [...] ..."
+  const std::string prompt = "pxh> ";
+  std::size_t at = 0;
+  while (line.compare(at, prompt.size(), prompt) == 0) at += prompt.size();
+  return at == 0 ? line : line.substr(at);
+}
+
 std::optional<Severity> px4_console_severity(std::string_view raw) {
-  const std::string line = without_colour_codes(raw);
+  const std::string line = without_shell_prompt(without_colour_codes(raw));
   if (line.rfind("ERROR", 0) == 0 || line.rfind("PANIC", 0) == 0) return Severity::Error;
   if (line.rfind("WARN", 0) == 0) return Severity::Warning;
   return std::nullopt;
@@ -86,7 +94,7 @@ std::vector<std::string> Px4Console::new_lines(std::size_t max_bytes) {
   partial_ += chunk;
   std::size_t start = 0;
   for (std::size_t nl; (nl = partial_.find('\n', start)) != std::string::npos; start = nl + 1)
-    out.push_back(without_colour_codes(std::string_view(partial_).substr(start, nl - start)));
+    out.push_back(without_shell_prompt(without_colour_codes(std::string_view(partial_).substr(start, nl - start))));
   partial_.erase(0, start);
   if (partial_.size() > 4096) {  // a line without end: given out in pieces, never held without bound
     out.push_back(without_colour_codes(partial_));

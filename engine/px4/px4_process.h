@@ -61,6 +61,8 @@ class Px4Console {
 std::optional<Severity> px4_console_severity(std::string_view line);
 /// The line without PX4's terminal colour codes.
 std::string without_colour_codes(std::string_view line);
+/// The line without the "pxh> " prompts a MAVLink shell session leaves at its start.
+std::string without_shell_prompt(std::string line);
 
 class Px4Process {
  public:

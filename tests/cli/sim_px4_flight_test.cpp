@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -90,6 +91,97 @@ TEST_F(Px4Flight, ScenarioConditionsSeePx4sModeFromItsGcsInstance) {
   ASSERT_EQ(j["faults"].size(), 2u) << j.dump();
   EXPECT_EQ(j["faults_not_started"], nlohmann::json::array({"never (imu-noise:1.5)"})) << j.dump();
 }
+
+/// A hitl fault and PX4's own injection of the same failure (SYS_FAILURE_EN=1, `failure UNIT TYPE`).
+struct FaultPair {
+  const char* hitl_fault;  ///< --fault NAME (started at 25 s for 15 s)
+  const char* px4_off;     ///< `failure ...` at 25 s
+  const char* px4_ok;      ///< `failure ...` at 40 s
+};
+
+/// PX4's console warnings and errors of a flight as hitl sim showed them, without the lines of the
+/// injection itself ([failure], [simulator_mavlink]), each once.
+std::set<std::string> px4_warnings(const std::string& all_err) {
+  std::set<std::string> out;
+  // From the trajectory on: PX4's start (its preflight checks while EKF2 settles) varies from run to run.
+  const auto from = all_err.find("trajectory: TRAJECTORY");
+  const std::string err = from == std::string::npos ? all_err : all_err.substr(from);
+  const std::regex line("hitl sim: (?:warning|error): PX4: (?:WARN|ERROR) +(\\[[a-z_0-9]+\\] [^\\n]*)");
+  for (std::sregex_iterator it(err.begin(), err.end(), line), end; it != end; ++it) {
+    std::string text = (*it)[1];
+    while (!text.empty() && (text.back() == '\t' || text.back() == ' ')) text.pop_back();
+    if (text.rfind("[failure]", 0) == 0 || text.rfind("[simulator_mavlink]", 0) == 0) continue;
+    out.insert(text);
+  }
+  return out;
+}
+
+std::string joined(const std::set<std::string>& s) {
+  std::string out;
+  for (const auto& x : s) out += (out.empty() ? "" : "; ") + x;
+  return out.empty() ? "(none)" : out;
+}
+
+/// The last "sim_time_s" of the status objects on `out`, or -1.
+double last_sim_time(const std::string& out) {
+  const auto at = out.rfind("\"sim_time_s\":");
+  return at == std::string::npos ? -1 : std::atof(out.c_str() + at + 13);
+}
+
+class Px4FaultPair : public Px4Flight, public ::testing::WithParamInterface<FaultPair> {};
+
+TEST_P(Px4FaultPair, Px4ReactsToHitlsFaultAsToItsOwnInjection) {
+  const FaultPair& p = GetParam();
+  const std::string dir = temp_dir(), hover = dir + "/hover40.json";
+  std::ofstream(hover) << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0}, {"t": 40, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
+  auto args = [&](std::vector<std::string> more) {
+    std::vector<std::string> a = {hitl_binary(), "--json", "sim", "--px4", px4_dir_, "--no-vio", "--px4-speed", "2", "-t", hover};
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  // hitl's fault and, beside it, PX4's own injection through the session's shell at the same times.
+  Process with_hitl(args({"--clients", "0", "--fault", std::string(p.hitl_fault) + "@25+15"}));
+  const std::string clients = std::to_string(free_udp_port());
+  Process with_px4(args({"--clients", clients, "--px4-param", "SYS_FAILURE_EN=1"}));
+  bool off_sent = false, ok_sent = false;
+  const auto until = std::chrono::steady_clock::now() + 240s;
+  while (with_px4.running() && !ok_sent && std::chrono::steady_clock::now() < until) {
+    const double t = last_sim_time(with_px4.out());
+    // Once each (PX4's `failure ... ok` exits non-zero even when it took: its console line says).
+    if (!off_sent && t >= 25) {
+      run_hitl({"shell", "--session-port", clients, "-c", std::string("failure ") + p.px4_off}, 30s);
+      off_sent = true;
+    }
+    if (off_sent && !ok_sent && t >= 40) {
+      run_hitl({"shell", "--session-port", clients, "-c", std::string("failure ") + p.px4_ok}, 30s);
+      ok_sent = true;
+    }
+    std::this_thread::sleep_for(100ms);
+  }
+  const int code_hitl = with_hitl.wait(240s), code_px4 = with_px4.wait(240s);
+  ASSERT_TRUE(ok_sent) << with_px4.err();
+  EXPECT_NE(with_px4.err().find("[failure] inject failure unit:"), std::string::npos) << with_px4.err();
+  const auto seen_hitl = px4_warnings(with_hitl.err()), seen_px4 = px4_warnings(with_px4.err());
+  std::printf("[ reaction ] %s: %s\n[ reaction ] failure %s: %s\n", p.hitl_fault, joined(seen_hitl).c_str(), p.px4_off,
+              joined(seen_px4).c_str());
+  EXPECT_EQ(seen_hitl, seen_px4) << "hitl's " << p.hitl_fault << ": " << joined(seen_hitl) << "\nPX4's failure " << p.px4_off
+                                 << ": " << joined(seen_px4);
+  // Both flights end the same way: landed, one touchdown.
+  const auto a = last_json_line(with_hitl.out()), b = last_json_line(with_px4.out());
+  EXPECT_EQ(code_hitl, code_px4) << with_hitl.err() << "\n" << with_px4.err();
+  EXPECT_EQ(a["landing"]["touchdowns"], b["landing"]["touchdowns"]) << a.dump() << "\n" << b.dump();
+}
+
+INSTANTIATE_TEST_SUITE_P(AgainstPx4sFailureCommand, Px4FaultPair,
+                         ::testing::Values(FaultPair{"gps-loss", "gps off", "gps ok"},
+                                           FaultPair{"baro-stuck", "baro stuck", "baro ok"},
+                                           FaultPair{"mag-stuck", "mag stuck", "mag ok"}),
+                         [](const auto& param_info) {
+                           std::string name = param_info.param.hitl_fault;
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
 
 TEST_F(Px4Flight, KillOfHitlLeavesNoPx4) {
   Process sim({hitl_binary(), "sim", "--px4", px4_dir_, "--no-vio", "--clients", "0"});

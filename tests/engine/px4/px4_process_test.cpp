@@ -159,6 +159,10 @@ TEST(Px4Process, ConsoleLinesAreClassifiedAsPx4WritesThem) {
   EXPECT_EQ(px4_console_severity("ERROR [param] Parameter NO_SUCH not found."), Severity::Error);
   EXPECT_EQ(px4_console_severity("INFO  [commander] Ready for takeoff!"), std::nullopt);
   EXPECT_EQ(px4_console_severity("pxh> "), std::nullopt);
+  // A MAVLink shell session (hitl shell) leaves PX4's prompt before the next console line.
+  EXPECT_EQ(px4_console_severity("pxh> ERROR [vehicle_air_data] BARO #0 failed:  STALE!"), Severity::Error);
+  EXPECT_EQ(px4_console_severity("pxh> pxh> WARN  [failure] inject failure unit: gps"), Severity::Warning);
+  EXPECT_EQ(without_shell_prompt("pxh> ERROR [x] y"), "ERROR [x] y");
 }
 
 TEST(Px4Process, OnePx4ThatIgnoresSigtermIsKilledWithWhatItStarted) {
