@@ -171,6 +171,10 @@ TEST_P(Px4FaultPair, Px4ReactsToHitlsFaultAsToItsOwnInjection) {
   const auto a = last_json_line(with_hitl.out()), b = last_json_line(with_px4.out());
   EXPECT_EQ(code_hitl, code_px4) << with_hitl.err() << "\n" << with_px4.err();
   EXPECT_EQ(a["landing"]["touchdowns"], b["landing"]["touchdowns"]) << a.dump() << "\n" << b.dump();
+  EXPECT_EQ(a["trajectory"]["state"], b["trajectory"]["state"]) << a.dump() << "\n" << b.dump();
+  std::printf("[ reaction ] both flights: %s, %s touchdown(s) / %s, %s\n", a["trajectory"]["state"].dump().c_str(),
+              a["landing"]["touchdowns"].dump().c_str(), b["trajectory"]["state"].dump().c_str(),
+              b["landing"]["touchdowns"].dump().c_str());
 }
 
 INSTANTIATE_TEST_SUITE_P(AgainstPx4sFailureCommand, Px4FaultPair,
