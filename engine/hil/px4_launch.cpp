@@ -32,16 +32,6 @@ Expected<std::string> new_temp_folder() {
   return pattern;
 }
 
-/// "Parameter NAME not found" in PX4's console (its `param set` for a PX4_PARAM_ it does not know).
-std::optional<std::string> unknown_parameter(const std::string& line) {
-  const std::string before = "Parameter ", after = " not found";
-  const auto at = line.find(before);
-  if (at == std::string::npos) return std::nullopt;
-  const auto end = line.find(after, at + before.size());
-  if (end == std::string::npos) return std::nullopt;
-  return line.substr(at + before.size(), end - at - before.size());
-}
-
 }  // namespace
 
 std::vector<px4::Px4Param> px4_params_for(const SessionConfig& config) {
@@ -134,7 +124,7 @@ std::optional<Error> Px4Launch::check(EventSink& events, bool connected, bool li
   if (!process_) return std::nullopt;
   std::size_t shown = 0;
   for (const auto& line : process_->console().new_lines()) {
-    if (const auto name = unknown_parameter(line)) {
+    if (const auto name = px4::px4_unknown_parameter(line)) {
       bool ours = false;
       for (const auto& p : options_.params) {
         if (p.name != *name) continue;

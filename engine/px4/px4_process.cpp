@@ -67,6 +67,15 @@ std::string without_colour_codes(std::string_view line) {
   return out;
 }
 
+std::optional<std::string> px4_unknown_parameter(std::string_view line) {
+  const std::string_view before = "Parameter ", after = " not found";
+  const auto at = line.find(before);
+  if (at == std::string_view::npos) return std::nullopt;
+  const auto end = line.find(after, at + before.size());
+  if (end == std::string_view::npos || end == at + before.size()) return std::nullopt;
+  return std::string(line.substr(at + before.size(), end - at - before.size()));
+}
+
 std::string without_shell_prompt(std::string line) {
   // A MAVLink shell (hitl shell) writes PX4's prompt into the console: "pxh> ERROR [...] ..."
   const std::string prompt = "pxh> ";

@@ -59,6 +59,9 @@ class Px4Console {
 /// PX4's console line "WARN  [commander] ..." -> Warning, "ERROR [...]" -> Error (terminal colour
 /// codes ignored); nullopt for INFO and anything else.
 std::optional<Severity> px4_console_severity(std::string_view line);
+/// NAME from PX4's console line "ERROR [param] Parameter NAME not found." (its `param set` for a
+/// PX4_PARAM_ it does not have); nullopt for any other line.
+std::optional<std::string> px4_unknown_parameter(std::string_view line);
 /// The line without PX4's terminal colour codes.
 std::string without_colour_codes(std::string_view line);
 /// The line without the "pxh> " prompts a MAVLink shell session leaves at its start.

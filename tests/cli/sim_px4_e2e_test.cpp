@@ -37,18 +37,9 @@ std::string standin_build(const fs::path& root, const std::string& body) {
   return b.string();
 }
 
-/// True while `pid` is a process that has not ended (a zombie counts as ended).
-bool alive(int pid) {
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string line;
-  if (!std::getline(stat, line)) return false;
-  const auto close = line.rfind(')');
-  return close != std::string::npos && close + 2 < line.size() && line[close + 2] != 'Z';
-}
-
 bool gone_within(int pid, std::chrono::milliseconds limit) {
   const auto until = std::chrono::steady_clock::now() + limit;
-  while (alive(pid)) {
+  while (process_running(pid)) {
     if (std::chrono::steady_clock::now() > until) return false;
     std::this_thread::sleep_for(20ms);
   }

@@ -225,13 +225,7 @@ TEST_F(Px4Flight, KillOfHitlLeavesNoPx4) {
   sim.signal(SIGKILL);
   sim.wait(10s);
   const auto until = std::chrono::steady_clock::now() + 5s;
-  auto alive = [px4] {
-    std::ifstream stat("/proc/" + std::to_string(px4) + "/stat");
-    std::string line;
-    if (!std::getline(stat, line)) return false;
-    const auto close = line.rfind(')');
-    return close != std::string::npos && close + 2 < line.size() && line[close + 2] != 'Z';
-  };
+  auto alive = [px4] { return process_running(px4); };
   while (alive() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(50ms);
   EXPECT_FALSE(alive()) << "PX4 " << px4 << " outlived hitl's SIGKILL";
 }

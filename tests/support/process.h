@@ -57,6 +57,9 @@ struct RunResult {
 };
 RunResult run_hitl(const std::vector<std::string>& args, std::chrono::milliseconds timeout = std::chrono::seconds(60));
 
+/// True while `pid` is a process that has not ended (a zombie, ended but not yet reaped, counts as ended).
+bool process_running(int pid);
+
 /// The hitl binary under test.
 std::string hitl_binary();
 

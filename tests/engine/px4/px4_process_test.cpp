@@ -163,6 +163,9 @@ TEST(Px4Process, ConsoleLinesAreClassifiedAsPx4WritesThem) {
   EXPECT_EQ(px4_console_severity("pxh> ERROR [vehicle_air_data] BARO #0 failed:  STALE!"), Severity::Error);
   EXPECT_EQ(px4_console_severity("pxh> pxh> WARN  [failure] inject failure unit: gps"), Severity::Warning);
   EXPECT_EQ(without_shell_prompt("pxh> ERROR [x] y"), "ERROR [x] y");
+  EXPECT_EQ(px4_unknown_parameter("ERROR [param] Parameter NOPE_PARAM not found."), "NOPE_PARAM");
+  EXPECT_EQ(px4_unknown_parameter("ERROR [param] Parameter  not found."), std::nullopt);
+  EXPECT_EQ(px4_unknown_parameter("INFO  [param] selected parameter default file"), std::nullopt);
 }
 
 TEST(Px4Process, OnePx4ThatIgnoresSigtermIsKilledWithWhatItStarted) {
