@@ -72,14 +72,18 @@ void TrajectoryPilot::on_board_frame(const mavlink::Frame& f) {
   if (f.sysid != config_.target_system) return;
   if (f.is<msg::Heartbeat>()) {
     const auto hb = f.as<msg::Heartbeat>();
-    if (hb.autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid))
+    if (hb.autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid)) {
       armed_ = shows_armed(hb);
+      // The mode is set when the board shows it: PX4 SITL acknowledged a DO_SET_MODE as accepted and
+      // then said "Switching to Position is currently not available" to the next one.
+      const Px4Mode wanted = config_.mode == StickMode::Attitude ? kPx4Stabilized : kPx4Position;
+      mode_set_ = (hb.custom_mode & 0xFFFF0000u) == wanted.custom_mode();
+    }
   } else if (f.is<msg::SysStatus>()) {
     ready_ = (f.as<msg::SysStatus>().onboard_control_sensors_health & mavlink::sys_status::kPrearmCheck) != 0;
   } else if (f.is<msg::CommandAck>()) {
     const auto a = f.as<msg::CommandAck>();
     if (a.command == mavlink::cmd::kNavTakeoff) takeoff_ack_ = a.result;
-    if (a.command == mavlink::cmd::kDoSetMode && a.result == static_cast<uint8_t>(mavlink::MavResult::Accepted)) mode_set_ = true;
   }
 }
 

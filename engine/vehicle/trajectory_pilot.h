@@ -139,7 +139,7 @@ class TrajectoryPilot {
   double trajectory_start_s_ = 0;
   bool armed_ = false;
   bool ready_ = false;
-  bool mode_set_ = false;
+  bool mode_set_ = false;  ///< the board's HEARTBEAT shows the mode the sticks are for
   std::optional<uint8_t> takeoff_ack_;
   std::string failure_;
   ErrorStats tracking_;

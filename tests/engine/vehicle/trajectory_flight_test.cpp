@@ -83,7 +83,8 @@ TEST(TrajectoryFlight, PoseAndTruthAreMeasuredFromWhereEachRestedAtTheStart) {
   EXPECT_EQ(flight.state(), PilotState::Takeoff);
   flight.on_board_frame(ack(mavlink::cmd::kNavTakeoff));
   for (int i = 0; i < 10; ++i) tick(2.0, 0.5);
-  flight.on_board_frame(ack(mavlink::cmd::kDoSetMode));
+  armed.custom_mode = kPx4Position.custom_mode();  // the board shows the mode asked for
+  flight.on_board_frame(board_frame(armed));
   for (int i = 0; i < 10; ++i) tick(2.0, 0.5);
   ASSERT_EQ(flight.state(), PilotState::Trajectory);
   const auto r = flight.result();
@@ -118,6 +119,8 @@ class FlyingBoard {
       takeoff_amsl_m_ = c.param7;
       up_ = true;
     }
+    if (c.command == mavlink::cmd::kDoSetMode)  // shown from the next HEARTBEAT on, as PX4 does
+      board_.custom_mode = static_cast<uint32_t>(c.param2) << 16 | static_cast<uint32_t>(c.param3) << 24;
     if (c.command == mavlink::cmd::kNavLand) {
       up_ = false;
       board_.base_mode = 0;

@@ -33,10 +33,11 @@ class Board {
     s.onboard_control_sensors_health = mavlink::sys_status::kPrearmCheck;
     return frame(s);
   }
-  mavlink::Frame heartbeat(bool armed) {
+  mavlink::Frame heartbeat(bool armed, uint32_t custom_mode = 0) {
     msg::Heartbeat hb;
     hb.autopilot = static_cast<uint8_t>(mavlink::MavAutopilot::Px4);
     hb.base_mode = armed ? mavlink::mode_flag::kSafetyArmed : 0;
+    hb.custom_mode = custom_mode;
     return frame(hb);
   }
   mavlink::Frame ack(uint16_t command) {
@@ -87,7 +88,11 @@ float fly_to_trajectory(TrajectoryPilot& pilot, Board& board, double& t_s) {
       if (c.command == mavlink::cmd::kDoSetMode) main_mode = c.param2;
   }
   EXPECT_TRUE(centred_sticks_first) << "a manual mode needs manual control present before the switch";
+  // PX4 SITL acknowledged a DO_SET_MODE as accepted and then refused the switch: the ACK is not the mode.
   pilot.on_board_frame(board.ack(mavlink::cmd::kDoSetMode));
+  pilot.step(t_s += 0.05, up);
+  EXPECT_EQ(pilot.state(), PilotState::Takeoff);
+  pilot.on_board_frame(board.heartbeat(true, static_cast<uint32_t>(main_mode) << 16));  // the board shows it
   pilot.step(t_s += 0.05, up);
   EXPECT_EQ(pilot.state(), PilotState::Trajectory);
   return main_mode;
