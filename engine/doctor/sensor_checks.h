@@ -14,7 +14,7 @@ namespace hitl::doctor {
 
 /// One read of `qshell dsp_hitl status`: the shell's text (or why there was none) and when it came.
 struct DspHitlRead {
-  Expected<std::string> text = Error{"not read"};
+  Expected<std::string> text = Error::failed("not read");
   double t_s = 0;
 };
 
