@@ -18,10 +18,6 @@ struct DspHitlRead {
   double t_s = 0;
 };
 
-/// The spec's rates at real time: hil_sensor_imu 250 Hz (and IMU published), hil_sensor_mag_baro
-/// 100 Hz (batched), sensor_mag 50 Hz, sensor_baro 10 Hz.
-telemetry::DspHitlExpectedRates spec_dsp_hitl_rates();
-
 /// dsp-hitl: running, every counter increasing between the reads, at the spec's rates times
 /// `pace` (the board's clock against the wall: the session's real-time factor in lockstep, else 1).
 /// `simulator_sending`: whether a session is known to send sensor data (shapes the fix).
