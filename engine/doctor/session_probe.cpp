@@ -17,8 +17,9 @@ void probe_session(uint16_t port, double listen_s, const std::function<void(cons
   spec.host = "127.0.0.1";
   spec.port = port;
   spec.text = spec.to_string();
-  const auto session = net::SocketAddress::resolve(spec.host, port);
-  if (!session || !net::udp_listener_may_be_at(*session)) return;  // nothing listens there: no session
+  // Nothing holds the port: no session. Asked by binding it, not by sending to it: a datagram would
+  // make the session count one more client.
+  if (auto held = net::udp_port_in_use(port); held && !*held) return;
   net::LinkSettings settings;
   settings.name = "the session port";
   settings.hear_peer_only = true;  // the session answers from its client port; anything else is not it
