@@ -277,7 +277,7 @@ int run_board(const GlobalOptions& g, const BoardOptions& o, const std::string& 
     }
   }
   if (action == "status") return run_status(g, run, r, shell, *survey);
-  Expected<board::BoardPlan> plan = Error{"unknown action " + action};
+  Expected<board::BoardPlan> plan = Error::usage("unknown action " + action);
   if (action == "install") plan = board::make_install_plan(*survey, {packages});
   if (action == "start") plan = board::make_start_plan(*survey, {o.reset_params, o.wait_s});
   if (action == "stop") plan = board::make_stop_plan(*survey);

@@ -86,6 +86,11 @@ void log_error(const std::string& command, const std::string& message) {
   std::cerr << "hitl " << command << ": " << message << '\n';
 }
 
+int log_error(const std::string& command, const Error& error) {
+  log_error(command, error.message);
+  return exit_code(error);
+}
+
 namespace {
 std::atomic<bool>& stop_storage() {
   static std::atomic<bool> stop{false};

@@ -59,6 +59,8 @@ void print_json_line(const nlohmann::json& object);
 void log_info(const GlobalOptions& options, const std::string& line);
 /// An error line on stderr: "hitl <cmd>: <message>".
 void log_error(const std::string& command, const std::string& message);
+/// log_error() of the error's message; returns its exit code (from its kind, exit_code()).
+int log_error(const std::string& command, const Error& error);
 
 /// Installs SIGINT/SIGTERM handlers; the flag turns true on the first signal (a second one kills).
 const std::atomic<bool>& stop_flag_on_signals();

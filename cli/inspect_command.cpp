@@ -168,7 +168,7 @@ Expected<inspect::Inspector::EndReason> run_with_dashboard(inspect::Inspector& i
   tui::InspectDashboard dashboard(inspector.where(), expected_hz, !opt.tlog.empty());
   DashboardTee tee(dashboard, printer);
   std::atomic<bool> stop{false};
-  Expected<inspect::Inspector::EndReason> end = Error{"not run"};
+  Expected<inspect::Inspector::EndReason> end = Error::failed("not run");
   std::thread loop([&] {
     end = inspector.run(stop, tee);
     dashboard.mark_finished(end ? std::string(end_reason_name(*end)) : "error: " + end.error().message);
@@ -183,8 +183,7 @@ Expected<inspect::Inspector::EndReason> run_with_dashboard(inspect::Inspector& i
 int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   InspectOptions opt = opt_in;
   if (opt.tui && opt.follow) {
-    log_error("inspect", "--follow prints every frame as it arrives; it does not go with --tui");
-    return kExitUsage;
+    return log_error("inspect", Error::usage("--follow prints every frame as it arrives; it does not go with --tui"));
   }
   if (opt.tui) {
     if (auto usable = tui::terminal_usable(); !usable) {
@@ -195,8 +194,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   const std::string cmd = "inspect";
   const int sources = (opt.port ? 1 : 0) + (opt.connect.empty() ? 0 : 1) + (opt.tlog.empty() ? 0 : 1);
   if (sources != 1) {
-    log_error(cmd, "give exactly one source: --port P, --connect udp:HOST:PORT or --tlog FILE");
-    return kExitUsage;
+    return log_error(cmd, Error::usage("give exactly one source: --port P, --connect udp:HOST:PORT or --tlog FILE"));
   }
   auto messages = load_messages(global);
   if (!messages) {
@@ -207,8 +205,7 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   for (const auto& name : opt.show) {
     const auto* desc = messages->lookup(name);
     if (desc == nullptr) {
-      log_error(cmd, "--show: unknown message '" + name + "' (load its dialect with --dialect FILE.xml)");
-      return kExitUsage;
+      return log_error(cmd, Error::input("--show: unknown message '" + name + "' (load its dialect with --dialect FILE.xml)"));
     }
     show_ids.push_back(desc->id);
   }

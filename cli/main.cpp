@@ -61,10 +61,10 @@ int main(int argc, char** argv) {
       if (a.rfind("--config=", 0) == 0) config_file = a.substr(9);
     if (const auto better = explain_parse_error(app, e, args, config_file); !better.empty()) {
       std::cerr << better << '\n';
-      return kExitUsage;
+      return exit_code(hitl::ErrorKind::Usage);  // CLI11 refused the command line
     }
     app.exit(e);
-    return kExitUsage;
+    return exit_code(hitl::ErrorKind::Usage);  // CLI11 refused the command line
   }
   return state.exit_code;
 }

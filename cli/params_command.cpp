@@ -95,18 +95,15 @@ Expected<Session> open(Report& report, const ParamsOptions& o) {
   return s;
 }
 
-std::optional<std::vector<vehicle::Param>> download(Report& report, Session& s) {
+Expected<std::vector<vehicle::Param>> download(Report& report, Session& s) {
   const GlobalOptions& g = report.g;
   const bool tty = ::isatty(STDERR_FILENO) == 1 && !g.quiet;
   auto all = s.client->download([&](std::size_t n, std::size_t total) {
     if (tty && (n % 25 == 0 || n == total)) std::fprintf(stderr, "\rparameters %zu / %zu", n, total);
   });
   if (tty) std::fprintf(stderr, "\n");
-  if (!all) {
-    report.fail(all.error().message);
-    return std::nullopt;
-  }
-  return std::move(all.value());
+  if (!all) report.fail(all.error().message);
+  return all;
 }
 
 /// Why `get` of `name` failed, in words: when the board's list has no such name, says so with the
@@ -141,7 +138,7 @@ int push(Report& report, const ParamsOptions& o, Session& s, const std::vector<v
   const GlobalOptions& g = report.g;
   const bool dry_run = o.dry_run;
   auto board = download(report, s);
-  if (!board) return kExitFailed;
+  if (!board) return exit_code(board.error());
   const auto pushed = vehicle::push_params(*s.client, *s.link, *board, wanted, {dry_run, absent_ok});
   const std::optional<std::string>& firmware = pushed.firmware;
   nlohmann::json set = nlohmann::json::array(), unchanged = pushed.unchanged, failed = nlohmann::json::array(),
@@ -192,13 +189,14 @@ int run_action(Report& report, const ParamsOptions& o, const std::string& action
   if (!s) return exit_code(s.error());
   if (action == "show" || action == "export") {
     auto all = download(report, *s);
-    if (!all) return kExitFailed;
+    if (!all) return exit_code(all.error());
     if (action == "export") {
       std::ofstream f(o.file);
       f << vehicle::format_params(*all, s->link->target_sysid(), s->link->target_compid());
       if (!f) {
-        report.fail("cannot write '" + o.file + "'");
-        return kExitFailed;
+        const Error unwritable = Error::unavailable("cannot write '" + o.file + "'");
+        report.fail(unwritable.message);
+        return exit_code(unwritable);
       }
       if (g.json) report.summary({{"file", o.file}, {"count", all->size()}});
       else std::cout << "exported " << all->size() << " parameters to " << o.file << '\n';
@@ -247,7 +245,7 @@ int run_action(Report& report, const ParamsOptions& o, const std::string& action
   }
   if (action == "diff" || action == "check") {
     auto all = download(report, *s);
-    if (!all) return kExitFailed;
+    if (!all) return exit_code(all.error());
     const auto checked = vehicle::check_params(*all, vehicle::hitl_default_params());
     std::optional<std::string> firmware;
     nlohmann::json absent = nlohmann::json::array();

@@ -52,8 +52,7 @@ int run_replay(const GlobalOptions& global, const ReplayOptions& opt) {
     return exit_code(session.error());
   }
   if (opt.compare && session->actuators.empty()) {
-    log_error(cmd, "--compare: recording '" + opt.file + "' holds no HIL_ACTUATOR_CONTROLS to compare with");
-    return kExitUsage;
+    return log_error(cmd, Error::input("--compare: recording '" + opt.file + "' holds no HIL_ACTUATOR_CONTROLS to compare with"));
   }
   char line[512];
   std::snprintf(line, sizeof line,

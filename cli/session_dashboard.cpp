@@ -27,7 +27,7 @@ Expected<hil::Session::EndReason> run_session_with_dashboard(const GlobalOptions
   tui::SimDashboard dashboard(session, config, std::move(dashboard_config));
   if (attach) attach(&dashboard);
   std::atomic<bool> stop{false};
-  Expected<hil::Session::EndReason> end = Error{"not run"};
+  Expected<hil::Session::EndReason> end = Error::failed("not run");
   std::thread loop([&] {
     end = session.run(stop, dashboard);
     dashboard.mark_finished(end ? std::string("the session ended (") + end_reason_name(*end) + ")"

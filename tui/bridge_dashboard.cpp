@@ -1,6 +1,5 @@
 #include "tui/bridge_dashboard.h"
 
-#include "engine/model/x500_defaults.h"
 #include "tui/draw.h"
 
 namespace hitl::tui {
@@ -72,7 +71,7 @@ PathsPanel bridge_paths(const bridge::BridgeHealth& now, const std::optional<bri
 
 BridgeDashboard::BridgeDashboard(const bridge::BridgeConfig& config)
     : board_reachable_(config.clients_port != 0),
-      board_(config.clients_port, std::nullopt, dsp_hitl_rates(model::x500_vehicle_config().sensors), log_) {
+      board_(config.clients_port, std::nullopt, config.dsp_hitl_rates, log_) {
   log_.add(Severity::Info, "hitl bridge --tui: ? for the keys");
 }
 

@@ -73,11 +73,11 @@ void install(int sig, void (*handler)(int)) {
 }  // namespace
 
 Expected<bool> terminal_usable() {
-  if (::isatty(STDOUT_FILENO) != 1) return Error{"stdout is not a terminal"};
-  if (::isatty(STDIN_FILENO) != 1) return Error{"stdin is not a terminal (no keys)"};
+  if (::isatty(STDOUT_FILENO) != 1) return Error::unavailable("stdout is not a terminal");
+  if (::isatty(STDIN_FILENO) != 1) return Error::unavailable("stdin is not a terminal (no keys)");
   const char* term = std::getenv("TERM");
   if (term == nullptr || *term == '\0' || std::strcmp(term, "dumb") == 0)
-    return Error{std::string("TERM is ") + (term == nullptr || *term == '\0' ? "not set" : "dumb")};
+    return Error::unavailable(std::string("TERM is ") + (term == nullptr || *term == '\0' ? "not set" : "dumb"));
   return true;
 }
 
@@ -91,7 +91,7 @@ Expected<std::unique_ptr<Terminal>> Terminal::open() {
   const bool utf8_locale = std::strcmp(nl_langinfo(CODESET), "UTF-8") == 0;
   // newterm, not initscr: a terminal ncurses does not know is an error here, not an exit().
   SCREEN* s = newterm(nullptr, stdout, stdin);
-  if (s == nullptr) return Error{std::string("ncurses does not know the terminal type '") + std::getenv("TERM") + "'"};
+  if (s == nullptr) return Error::unavailable(std::string("ncurses does not know the terminal type '") + std::getenv("TERM") + "'");
   t->curses_screen_ = s;
   g_restore.reset_len = 0;
   append_capability("rmcup");

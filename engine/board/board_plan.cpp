@@ -295,7 +295,7 @@ BoardPlan make_stop_plan(const BoardSurvey& survey) {
 
 Expected<BoardPlan> make_restore_plan(const BoardSurvey& survey, const RestoreOptions& options) {
   if (!survey.state_text)
-    return Error{std::string("nothing to restore: the board has no record of a hitl board install (") + kStateFile + ")"};
+    return Error::failed(std::string("nothing to restore: the board has no record of a hitl board install (") + kStateFile + ")");
   auto before = parse_board_state(*survey.state_text);
   if (!before) return before.error();
   BoardPlan plan;

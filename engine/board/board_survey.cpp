@@ -34,7 +34,7 @@ Expected<std::optional<std::string>> read_file(BoardShell& shell, const std::str
   auto out = shell.run(read_file_command(path));
   if (!out) return out.error();
   if (out->exit_code == kAbsentExit) return std::optional<std::string>{};
-  if (out->exit_code != 0) return Error{"cannot read " + path + " on the board (exit " + std::to_string(out->exit_code) + "): " + out->err};
+  if (out->exit_code != 0) return Error::failed("cannot read " + path + " on the board (exit " + std::to_string(out->exit_code) + "): " + out->err);
   if (out->out.size() > kMaxFileBytes)
     return Error::input(path + " on the board is over " + std::to_string(kMaxFileBytes / 1024) + " KiB: not a configuration file hitl edits");
   return std::optional<std::string>{out->out};

@@ -72,14 +72,14 @@ RunReport run_plan(const BoardPlan& plan, BoardShell& shell, const HostActions& 
           break;
         }
       } else if (action.kind == ActionKind::WaitForPx4) {
-        Status ready = host.wait_for_px4 ? host.wait_for_px4() : Status(Error{"no link to PX4 to wait on"});
+        Status ready = host.wait_for_px4 ? host.wait_for_px4() : Status(Error::failed("no link to PX4 to wait on"));
         if (!ready) {
           fail(i, action, ready.error().message, "");
           break;
         }
         if (cb.said) cb.said("PX4 is up and dsp_hitl is running");
       } else if (action.kind == ActionKind::HitlParams) {
-        auto set = host.hitl_params ? host.hitl_params() : Expected<std::vector<std::string>>(Error{"no link to PX4"});
+        auto set = host.hitl_params ? host.hitl_params() : Expected<std::vector<std::string>>(Error::failed("no link to PX4"));
         if (!set) {
           fail(i, action, set.error().message, "");
           break;

@@ -29,7 +29,7 @@ Expected<bool> dsp_hitl_running(vehicle::VehicleLink& link) {
   if (!out) return out.error();
   target::DspHitlStatusReport report;
   std::string why;
-  if (!target::parse_dsp_hitl_status(*out, &report, &why)) return Error{"`qshell dsp_hitl status` answered '" + *out + "' (" + why + ")"};
+  if (!target::parse_dsp_hitl_status(*out, &report, &why)) return Error::failed("`qshell dsp_hitl status` answered '" + *out + "' (" + why + ")");
   return report.running;
 }
 
@@ -51,7 +51,7 @@ Status wait_for_px4(const vehicle::LinkOptions& options, double timeout_s) {
     last = running ? "PX4 is up (" + (*link)->description() + ") but `qshell dsp_hitl status` says Running: no" : running.error().message;
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
   }
-  return Error{"PX4 not ready after " + std::to_string(static_cast<int>(timeout_s)) + " s: " + last};
+  return Error::failed("PX4 not ready after " + std::to_string(static_cast<int>(timeout_s)) + " s: " + last);
 }
 
 Expected<std::vector<std::string>> push_hitl_params(const vehicle::LinkOptions& options) {
@@ -64,7 +64,7 @@ Expected<std::vector<std::string>> push_hitl_params(const vehicle::LinkOptions& 
   if (!result.failed.empty()) {
     std::string names;
     for (const auto& f : result.failed) names += (names.empty() ? "" : "; ") + f.name + ": " + f.error;
-    return Error{"PX4 did not take " + names};
+    return Error::failed("PX4 did not take " + names);
   }
   std::vector<std::string> set;
   for (const auto& c : result.set) set.push_back(c.name);

@@ -92,14 +92,19 @@ class Bridge {
     auto target = net::resolve_board_address(config_.board_ip, config_.board_port);
     if (!target) return target.error();
     board_address_ = *target;
-    net::UdpLink::Config c;
-    c.endpoint.bind_port = config_.local_port;
-    c.endpoint.peer = *target;
-    c.endpoint.policy = net::PartnerPolicy::Fixed;
-    c.endpoint.name = "the board link's local port (--local-port)";
-    c.hear_peer_only = true;  // the board answers from its own port; anyone else is not the board
-    c.endpoint.receive_buffer_bytes = board_buffer_asked_ = kBoardReceiveMin_bytes;  // grows with the stream (size_board_buffer)
-    auto ep = net::UdpLink::open(c);
+    // udp:BOARD:PORT from the fixed --local-port, through the one factory; typed, for the socket's
+    // buffer and drop figures (size_board_buffer, poll_kernel_drops).
+    net::LinkSpec board;
+    board.kind = net::LinkSpec::Kind::Udp;
+    board.host = config_.board_ip;  // resolved above: the same address, with the -i error
+    board.port = config_.board_port;
+    board.text = board.to_string();
+    net::LinkSettings settings;
+    settings.name = "the board link's local port (--local-port)";
+    settings.local_port = config_.local_port;
+    settings.hear_peer_only = true;  // the board answers from its own port; anyone else is not the board
+    settings.receive_buffer_bytes = board_buffer_asked_ = kBoardReceiveMin_bytes;  // grows with the stream (size_board_buffer)
+    auto ep = net::open_udp_link(board, settings);
     if (!ep) return ep.error().suffixed(" (a hitl sim, another hitl bridge or a direct command owns it?)");
     board_buffers_ = ep.value()->buffer_sizes();
     board_udp_ = ep.value().get();

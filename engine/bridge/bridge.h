@@ -22,6 +22,7 @@
 #include "base/contract/data_rates.h"
 #include "base/contract/session_status.h"
 #include "engine/net/link_spec.h"
+#include "engine/telemetry/dsp_hitl_meter.h"
 #include "engine/vehicle/vehicle_link.h"
 
 namespace hitl::bridge {
@@ -47,6 +48,10 @@ struct BridgeConfig {
   /// kBoardBuffer_ms of the board's measured stream (within kBoardReceiveMin/Max_bytes).
   /// `?lossless` endpoints are never dropped to (the board waits in its socket for them instead).
   double queue_ms = 20;
+  /// What the board's dsp_hitl counters should show (the dashboard's dsp_hitl panel). The bridge runs
+  /// no simulator and never sees the HIL traffic (it goes to the board's HIL port), so the spec's
+  /// table: whatever feeds the board is expected to send at the spec's rates.
+  telemetry::DspHitlExpectedRates dsp_hitl_rates = telemetry::spec_dsp_hitl_expected_rates();
 };
 
 inline constexpr double kBoardBuffer_ms = 2;              ///< of the board's stream, as read: the board is read as fast as it sends

@@ -29,14 +29,14 @@ AppsShell AppsShell::none(std::string why) {
 Expected<std::string> AppsShell::run(const std::string& command, bool px4_answers) const {
   if (adb_) {
     auto r = adb_->shell(command);
-    if (!r) return Error{"adb shell " + command + ": " + r.error().message};
+    if (!r) return Error::failed("adb shell " + command + ": " + r.error().message);
     return r->out + r->err;  // systemctl is-active exits 3 for "inactive": the text is the answer
   }
-  if (!px4_) return Error{none_.empty() ? std::string(kNeedsAdb) : none_};
-  if (!px4_answers) return Error{kNeedsAdb};
+  if (!px4_) return Error::failed(none_.empty() ? std::string(kNeedsAdb) : none_);
+  if (!px4_answers) return Error::failed(kNeedsAdb);
   auto r = px4_(command);
-  if (!r) return Error{"PX4's shell: " + r.error().message};
-  if (r->find("command not found") != std::string::npos) return Error{kNeedsAdb};
+  if (!r) return Error::failed("PX4's shell: " + r.error().message);
+  if (r->find("command not found") != std::string::npos) return Error::failed(kNeedsAdb);
   return r;
 }
 

@@ -34,16 +34,16 @@ constexpr const char* kVioStatusCommand = "voxl-hitl-vio-server --status --json"
 
 /// Everything the board-facing checks decide on.
 struct BoardFindings {
-  Expected<std::string> link = Error{"not connected"};
+  Expected<std::string> link = Error::failed("not connected");
   Observations seen;
-  Expected<std::string> mavlink_status = Error{"no link to the board"};
+  Expected<std::string> mavlink_status = Error::failed("no link to the board");
   DspHitlRead dsp_first, dsp_second;
-  Expected<std::vector<vehicle::Param>> params = Error{"no link to the board"};
-  Expected<std::string> commander_check = Error{"not needed"};
-  BoardOutput vio_status = Error{"no link to the board"};
-  BoardOutput vio_active = Error{"no link to the board"};
-  BoardOutput vio_pipes = Error{"no link to the board"};
-  BoardOutput vision_hub = Error{"no link to the board"};
+  Expected<std::vector<vehicle::Param>> params = Error::failed("no link to the board");
+  Expected<std::string> commander_check = Error::failed("not needed");
+  BoardOutput vio_status = Error::failed("no link to the board");
+  BoardOutput vio_active = Error::failed("no link to the board");
+  BoardOutput vio_pipes = Error::failed("no link to the board");
+  BoardOutput vision_hub = Error::failed("no link to the board");
 };
 
 void request_message(vehicle::VehicleLink& link, uint32_t id) {
@@ -67,7 +67,7 @@ BoardFindings examine_board(const DoctorOptions& o, const AppsShell* adb_shell, 
   progress("connecting to the autopilot (" + o.link.connect + ")");
   auto link = vehicle::VehicleLink::connect(o.link);
   if (!link) {
-    b.link = Error{link.error().message};
+    b.link = link.error();
     b.seen = tracker.observations();
     return b;
   }
@@ -83,7 +83,7 @@ BoardFindings examine_board(const DoctorOptions& o, const AppsShell* adb_shell, 
   vehicle::ShellClient shell(l);
   std::string shell_broken;
   auto run_shell = [&](const std::string& line) -> Expected<std::string> {
-    if (!shell_broken.empty()) return Error{shell_broken};
+    if (!shell_broken.empty()) return Error::failed(shell_broken);
     auto r = shell.run(line, kShellTimeout_s);
     if (!r) shell_broken = "the shell did not answer an earlier command (" + r.error().message + ")";
     return r;
@@ -102,7 +102,7 @@ BoardFindings examine_board(const DoctorOptions& o, const AppsShell* adb_shell, 
   vehicle::ParamClient params(l);
   auto all = params.download();
   if (all) b.params = std::move(all.value());
-  else b.params = Error{all.error().message};
+  else b.params = all.error();
 
   if (needs_commander_check(tracker.observations())) b.commander_check = run_shell("commander check");
 
@@ -139,7 +139,7 @@ std::vector<CheckResult> run_doctor(const DoctorOptions& o, const ResultSink& on
   // host
   emit(route_check(o.link.target_ip, list_interfaces()));
   const bool adb_wanted = o.adb || !o.adb_serial.empty();
-  Expected<net::AdbDevices> listing = Error{"--adb not given"};
+  Expected<net::AdbDevices> listing = Error::failed("--adb not given");
   if (adb_wanted) {
     say("running adb devices");
     listing = net::list_adb_devices();

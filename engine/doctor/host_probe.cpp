@@ -8,11 +8,12 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <sstream>
+
+#include "engine/net/open_link.h"
 
 namespace hitl::doctor {
 namespace {
@@ -120,20 +121,12 @@ PortProbe probe_udp_port(uint16_t port, const std::string& role) {
   PortProbe p;
   p.port = port;
   p.role = role;
-  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-  if (fd < 0) {
-    p.error = std::string("cannot open a socket: ") + std::strerror(errno);
+  const auto in_use = net::udp_port_in_use(port);
+  if (!in_use) {
+    p.error = in_use.error().message;
     return p;
   }
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(port);
-  a.sin_addr.s_addr = htonl(INADDR_ANY);
-  if (::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) {
-    if (errno == EADDRINUSE) p.taken = true;
-    else p.error = "cannot bind UDP " + std::to_string(port) + ": " + std::strerror(errno);
-  }
-  ::close(fd);
+  p.taken = *in_use;
   if (!p.taken) return p;
   std::set<uint64_t> inodes;
   for (const char* table : {"/proc/net/udp", "/proc/net/udp6"})

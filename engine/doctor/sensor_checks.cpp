@@ -23,10 +23,6 @@ bool not_found(const DspHitlRead& r) { return r.text && r.text.value().find("com
 
 }  // namespace
 
-telemetry::DspHitlExpectedRates spec_dsp_hitl_rates() {
-  return telemetry::dsp_hitl_expected_rates(50.0, 10.0);  // spec: magnetometer 50 Hz, barometer 10 Hz
-}
-
 bool dsp_hitl_counting(const DspHitlRead& first, const DspHitlRead& second) {
   std::string why;
   const auto a = parse(first, &why), b = parse(second, &why);
@@ -48,7 +44,7 @@ CheckResult dsp_hitl_check(const DspHitlRead& first, const DspHitlRead& second, 
   if (!b->running)
     return make_result(check::kDspHitl, Verdict::Fail, "dsp_hitl is not running",
                        "hitl shell -c \"qshell dsp_hitl start\", or restart PX4 HITL: adb shell voxl-px4-hitl start");
-  telemetry::DspHitlMeter meter(spec_dsp_hitl_rates());
+  telemetry::DspHitlMeter meter(telemetry::spec_dsp_hitl_expected_rates());
   meter.on_report(*a, first.t_s);
   meter.on_report(*b, second.t_s);
   const auto view = meter.view(second.t_s);

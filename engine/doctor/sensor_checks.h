@@ -14,13 +14,9 @@ namespace hitl::doctor {
 
 /// One read of `qshell dsp_hitl status`: the shell's text (or why there was none) and when it came.
 struct DspHitlRead {
-  Expected<std::string> text = Error{"not read"};
+  Expected<std::string> text = Error::failed("not read");
   double t_s = 0;
 };
-
-/// The spec's rates at real time: hil_sensor_imu 250 Hz (and IMU published), hil_sensor_mag_baro
-/// 100 Hz (batched), sensor_mag 50 Hz, sensor_baro 10 Hz.
-telemetry::DspHitlExpectedRates spec_dsp_hitl_rates();
 
 /// dsp-hitl: running, every counter increasing between the reads, at the spec's rates times
 /// `pace` (the board's clock against the wall: the session's real-time factor in lockstep, else 1).

@@ -12,7 +12,8 @@ namespace hitl::doctor {
 
 /// Sends a ground station's HEARTBEAT to 127.0.0.1:`port` each second (the session then counts this
 /// socket as a client) and hands every frame heard within `listen_s` to `on_frame` with its
-/// monotonic time. Returns at once when nothing listens on the port (ICMP port unreachable).
+/// monotonic time. Returns at once when no socket holds the port (net::udp_port_in_use); the link
+/// is engine/net's (udp:127.0.0.1:PORT, hearing the session only).
 void probe_session(uint16_t port, double listen_s, const std::function<void(const mavlink::Frame&, double)>& on_frame);
 
 }  // namespace hitl::doctor

@@ -211,8 +211,8 @@ Expected<double> parse_number(const std::string& text, const std::string& what) 
   const char* begin = text.c_str();
   char* end = nullptr;
   const double v = std::strtod(begin, &end);
-  if (text.empty() || end != begin + text.size()) return Error{what + ": '" + text + "' is not a number"};
-  if (!std::isfinite(v)) return Error{what + ": '" + text + "' is not a finite number"};
+  if (text.empty() || end != begin + text.size()) return Error::input(what + ": '" + text + "' is not a number");
+  if (!std::isfinite(v)) return Error::input(what + ": '" + text + "' is not a finite number");
   return v;
 }
 
@@ -221,32 +221,32 @@ Expected<FaultSpec> make_fault(const std::string& name, const std::vector<double
   const FaultInfo* f = find_fault(name);
   if (f == nullptr) {
     const std::string hint = suggest ? suggest(name) : std::string();
-    return Error{"unknown fault '" + name + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?") +
-                 " (faults: docs/faults.md)"};
+    return Error::input("unknown fault '" + name + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?") +
+                        " (faults: docs/faults.md)");
   }
   const std::string where = "fault " + std::string(f->name);
   if (args.size() < f->required_args || args.size() > f->args.size()) {
     const std::string wanted = f->required_args == f->args.size()
                                    ? std::to_string(f->args.size())
                                    : std::to_string(f->required_args) + " to " + std::to_string(f->args.size());
-    return Error{where + ": takes " + wanted + " argument" + (f->args.size() == 1 ? "" : "s") + " (" + usage(*f) +
-                 "), got " + std::to_string(args.size())};
+    return Error::input(where + ": takes " + wanted + " argument" + (f->args.size() == 1 ? "" : "s") + " (" + usage(*f) +
+                        "), got " + std::to_string(args.size()));
   }
   for (std::size_t i = 0; i < args.size(); ++i) {
     const FaultArg& a = f->args[i];
     const double v = args[i];
-    if (!std::isfinite(v)) return Error{where + ": " + a.name + " must be a finite number"};
+    if (!std::isfinite(v)) return Error::input(where + ": " + a.name + " must be a finite number");
     if (v < a.min || v > a.max)
-      return Error{where + ": " + a.name + " must be within " + compact(a.min) + ".." + compact(a.max) + " (got " + compact(v) + ")"};
-    if (a.integer && v != std::floor(v)) return Error{where + ": " + a.name + " must be a whole number (got " + compact(v) + ")"};
+      return Error::input(where + ": " + a.name + " must be within " + compact(a.min) + ".." + compact(a.max) + " (got " + compact(v) + ")");
+    if (a.integer && v != std::floor(v)) return Error::input(where + ": " + a.name + " must be a whole number (got " + compact(v) + ")");
   }
   if (!std::isfinite(start_s) || start_s < 0 || start_s > kMaxTime_s)
-    return Error{where + ": the start time must be 0.." + compact(kMaxTime_s) + " s of simulated time (got " + compact(start_s) + ")"};
+    return Error::input(where + ": the start time must be 0.." + compact(kMaxTime_s) + " s of simulated time (got " + compact(start_s) + ")");
   if (duration_s && (!std::isfinite(*duration_s) || !(*duration_s > 0) || *duration_s > kMaxTime_s))
-    return Error{where + ": the duration must be more than 0 and at most " + compact(kMaxTime_s) + " s (got " +
-                 compact(*duration_s) + ")"};
+    return Error::input(where + ": the duration must be more than 0 and at most " + compact(kMaxTime_s) + " s (got " +
+                        compact(*duration_s) + ")");
   if (f->needs_duration && !duration_s)
-    return Error{where + ": needs a duration (" + std::string(f->name) + "@T+DUR; its shape spans it)"};
+    return Error::input(where + ": needs a duration (" + std::string(f->name) + "@T+DUR; its shape spans it)");
   FaultSpec spec;
   spec.kind = f->kind;
   spec.unit_fault = f->unit_fault;
@@ -295,7 +295,7 @@ Expected<FaultSpec> parse_fault(const std::string& text, const Suggest& suggest)
     }
   }
   auto spec = make_fault(name, args, start_s, duration_s, suggest);
-  if (!spec) return Error{"'" + text + "': " + spec.error().message};
+  if (!spec) return spec.error().prefixed("'" + text + "': ");
   return spec;
 }
 
@@ -305,7 +305,7 @@ namespace hitl::faults {
 
 Expected<FaultSpec> parse_live_fault(const std::string& text, const Suggest& suggest) {
   if (text.find('@') != std::string::npos)
-    return Error{"'" + text + "': a fault started by hand starts now: NAME[:ARGS][+DUR], no '@T'"};
+    return Error::input("'" + text + "': a fault started by hand starts now: NAME[:ARGS][+DUR], no '@T'");
   // The duration: after the last '+' that is no exponent's sign.
   std::string head = text, tail;
   for (auto plus = text.rfind('+'); plus != std::string::npos && plus > 0; plus = text.rfind('+', plus - 1)) {
@@ -318,7 +318,7 @@ Expected<FaultSpec> parse_live_fault(const std::string& text, const Suggest& sug
   if (!spec) {
     std::string message = spec.error().message;
     if (const auto at = message.find("@0"); at != std::string::npos) message.erase(at, 2);  // name what was typed
-    return Error{message};
+    return Error::input(message);
   }
   return spec;
 }

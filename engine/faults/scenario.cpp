@@ -25,7 +25,7 @@ std::string shown(const json& v) {
 
 Expected<double> number_field(const json& event, const char* key, const std::string& where) {
   const json& v = event.at(key);
-  if (!v.is_number()) return Error{where + "." + key + ": must be a number (got " + shown(v) + ")"};
+  if (!v.is_number()) return Error::input(where + "." + key + ": must be a number (got " + shown(v) + ")");
   return v.get<double>();
 }
 
@@ -33,12 +33,12 @@ Expected<std::vector<double>> args_field(const json& v, const std::string& where
   std::vector<double> args;
   if (v.is_array()) {
     for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!v[i].is_number()) return Error{where + ".args[" + std::to_string(i) + "]: must be a number (got " + shown(v[i]) + ")"};
+      if (!v[i].is_number()) return Error::input(where + ".args[" + std::to_string(i) + "]: must be a number (got " + shown(v[i]) + ")");
       args.push_back(v[i].get<double>());
     }
     return args;
   }
-  if (!v.is_string()) return Error{where + ".args: must be an array of numbers or a string \"2,0.6\" (got " + shown(v) + ")"};
+  if (!v.is_string()) return Error::input(where + ".args: must be an array of numbers or a string \"2,0.6\" (got " + shown(v) + ")");
   const std::string list = v.get<std::string>();
   if (list.empty()) return args;
   std::size_t pos = 0;
@@ -59,41 +59,41 @@ constexpr std::size_t kMaxNameLength = 64;
 
 Expected<Condition> parse_condition(const json& c, const std::string& where) {
   if (!c.is_object())
-    return Error{where + ": must be an object {\"altitude_above_m\", \"armed\", \"mode\", \"after\", \"delay_s\"} (got " + shown(c) + ")"};
+    return Error::input(where + ": must be an object {\"altitude_above_m\", \"armed\", \"mode\", \"after\", \"delay_s\"} (got " + shown(c) + ")");
   Condition out;
   for (const auto& [key, value] : c.items()) {
     const std::string at = where + "." + key;
     if (key == "altitude_above_m" || key == "altitude_below_m" || key == "delay_s") {
-      if (!value.is_number()) return Error{at + ": must be a number (got " + shown(value) + ")"};
+      if (!value.is_number()) return Error::input(at + ": must be a number (got " + shown(value) + ")");
       const double v = value.get<double>();
       const double lo = key == "delay_s" ? 0 : -kMaxAltitude_m, hi = key == "delay_s" ? kMaxDelay_s : kMaxAltitude_m;
-      if (!std::isfinite(v) || v < lo || v > hi) return Error{at + ": must be within " + std::to_string(static_cast<long>(lo)) + ".." + std::to_string(static_cast<long>(hi)) + " (got " + shown(value) + ")"};
+      if (!std::isfinite(v) || v < lo || v > hi) return Error::input(at + ": must be within " + std::to_string(static_cast<long>(lo)) + ".." + std::to_string(static_cast<long>(hi)) + " (got " + shown(value) + ")");
       (key == "delay_s" ? out.delay_s : key == "altitude_above_m" ? out.altitude_above_m.emplace() : out.altitude_below_m.emplace()) = v;
     } else if (key == "armed") {
-      if (!value.is_boolean()) return Error{at + ": must be true or false (got " + shown(value) + ")"};
+      if (!value.is_boolean()) return Error::input(at + ": must be true or false (got " + shown(value) + ")");
       out.armed = value.get<bool>();
     } else if (key == "mode" || key == "after") {
       if (!value.is_string() || value.get<std::string>().empty() || value.get<std::string>().size() > kMaxNameLength)
-        return Error{at + ": must be a name of 1.." + std::to_string(kMaxNameLength) + " characters (got " + shown(value) + ")"};
+        return Error::input(at + ": must be a name of 1.." + std::to_string(kMaxNameLength) + " characters (got " + shown(value) + ")");
       (key == "mode" ? out.mode : out.after) = value.get<std::string>();
     } else {
-      return Error{where + ": unknown key '" + key + "' (a condition has altitude_above_m, altitude_below_m, armed, mode, after, delay_s)"};
+      return Error::input(where + ": unknown key '" + key + "' (a condition has altitude_above_m, altitude_below_m, armed, mode, after, delay_s)");
     }
   }
   if (!out.altitude_above_m && !out.altitude_below_m && !out.armed && !out.mode && !out.after)
-    return Error{where + ": names nothing to wait for (altitude_above_m, altitude_below_m, armed, mode or after)"};
+    return Error::input(where + ": names nothing to wait for (altitude_above_m, altitude_below_m, armed, mode or after)");
   return out;
 }
 
 Expected<FaultSpec> parse_event(const json& event, const std::string& where, const Suggest& suggest) {
-  if (!event.is_object()) return Error{where + ": must be an object {\"at_s\", \"fault\", ...} (got " + shown(event) + ")"};
+  if (!event.is_object()) return Error::input(where + ": must be an object {\"at_s\", \"fault\", ...} (got " + shown(event) + ")");
   for (const auto& [key, value] : event.items())
     if (key != "at_s" && key != "fault" && key != "args" && key != "duration_s" && key != "id" && key != "when" && key != "end_when")
-      return Error{where + ": unknown key '" + key + "' (an event has id, at_s, when, fault, args, duration_s, end_when)"};
-  if (!event.contains("fault")) return Error{where + ": no \"fault\""};
+      return Error::input(where + ": unknown key '" + key + "' (an event has id, at_s, when, fault, args, duration_s, end_when)");
+  if (!event.contains("fault")) return Error::input(where + ": no \"fault\"");
   if (!event.contains("at_s") && !event.contains("when"))
-    return Error{where + ": no \"at_s\" (the start, simulated seconds) and no \"when\" (a condition)"};
-  if (!event.at("fault").is_string()) return Error{where + ".fault: must be a fault's name (got " + shown(event.at("fault")) + ")"};
+    return Error::input(where + ": no \"at_s\" (the start, simulated seconds) and no \"when\" (a condition)");
+  if (!event.at("fault").is_string()) return Error::input(where + ".fault: must be a fault's name (got " + shown(event.at("fault")) + ")");
   const std::string name = event.at("fault").get<std::string>();
   Expected<double> at = 0.0;
   if (event.contains("at_s")) at = number_field(event, "at_s", where);
@@ -102,7 +102,7 @@ Expected<FaultSpec> parse_event(const json& event, const std::string& where, con
   if (event.contains("id")) {
     const json& v = event.at("id");
     if (!v.is_string() || v.get<std::string>().empty() || v.get<std::string>().size() > kMaxNameLength)
-      return Error{where + ".id: must be a name of 1.." + std::to_string(kMaxNameLength) + " characters (got " + shown(v) + ")"};
+      return Error::input(where + ".id: must be a name of 1.." + std::to_string(kMaxNameLength) + " characters (got " + shown(v) + ")");
     id = v.get<std::string>();
   }
   std::optional<Condition> start_when, end_when;
@@ -129,7 +129,7 @@ Expected<FaultSpec> parse_event(const json& event, const std::string& where, con
     args = std::move(a.value());
   }
   auto spec = make_fault(name, args, *at, duration_s, suggest);
-  if (!spec) return Error{where + ": " + spec.error().message};
+  if (!spec) return spec.error().prefixed(where + ": ");
   spec->id = id;
   spec->start_when = start_when;
   spec->end_when = end_when;
@@ -177,19 +177,19 @@ Expected<std::vector<FaultSpec>> parse_events(const std::string& text, const std
   try {
     doc = json::parse(text);
   } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
-    return Error{where + ": not JSON: " + e.what()};
+    return Error::input(where + ": not JSON: " + e.what());
   }
   if (!doc.is_object() || !doc.contains("events"))
-    return Error{where + ": must be an object {\"events\": [...]} (docs/faults.md \"Scenario files\")"};
+    return Error::input(where + ": must be an object {\"events\": [...]} (docs/faults.md \"Scenario files\")");
   for (const auto& [key, value] : doc.items())
     if (key != "events" && key != "description")
-      return Error{where + ": unknown key '" + key + "' (a scenario has events and description)"};
+      return Error::input(where + ": unknown key '" + key + "' (a scenario has events and description)");
   if (doc.contains("description") && !doc.at("description").is_string())
-    return Error{where + ".description: must be a string"};
+    return Error::input(where + ".description: must be a string");
   const json& events = doc.at("events");
-  if (!events.is_array()) return Error{where + ".events: must be an array of events"};
+  if (!events.is_array()) return Error::input(where + ".events: must be an array of events");
   if (events.size() > kMaxScenarioEvents)
-    return Error{where + ".events: more than " + std::to_string(kMaxScenarioEvents) + " events"};
+    return Error::input(where + ".events: more than " + std::to_string(kMaxScenarioEvents) + " events");
   std::vector<FaultSpec> specs;
   for (std::size_t i = 0; i < events.size(); ++i) {
     auto spec = parse_event(events[i], where + ": events[" + std::to_string(i) + "]", suggest);
@@ -200,17 +200,17 @@ Expected<std::vector<FaultSpec>> parse_events(const std::string& text, const std
   for (std::size_t i = 0; i < specs.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j)
       if (!specs[i].id.empty() && specs[i].id == specs[j].id)
-        return Error{where + ": events[" + std::to_string(i) + "].id: '" + specs[i].id + "' is events[" + std::to_string(j) + "]'s too"};
+        return Error::input(where + ": events[" + std::to_string(i) + "].id: '" + specs[i].id + "' is events[" + std::to_string(j) + "]'s too");
     for (const auto* c : {&specs[i].start_when, &specs[i].end_when}) {
       if (!*c || !(*c)->after) continue;
       bool found = false;
       for (const auto& other : specs) found = found || other.id == *(*c)->after;
       if (!found || *(*c)->after == specs[i].id)
-        return Error{where + ": events[" + std::to_string(i) + "]: \"after\": '" + *(*c)->after + "' is no other event's id"};
+        return Error::input(where + ": events[" + std::to_string(i) + "]: \"after\": '" + *(*c)->after + "' is no other event's id");
     }
   }
-  if (const std::string cycle = start_cycle(specs); !cycle.empty()) return Error{where + ": " + cycle};
-  if (auto overlap = check_active_limit(specs); !overlap) return Error{where + ": " + overlap.error().message};
+  if (const std::string cycle = start_cycle(specs); !cycle.empty()) return Error::input(where + ": " + cycle);
+  if (auto overlap = check_active_limit(specs); !overlap) return overlap.error().prefixed(where + ": ");
   return specs;
 }
 

@@ -265,7 +265,7 @@ struct Multicopter::Impl {
           << format_vec(g.v_ENU_m_s) << ", w_FLU_rad_s " << format_vec(g.w_FLU_rad_s) << ", rotor speeds ("
           << g.rotor_speed_rad_s[0] << ", " << g.rotor_speed_rad_s[1] << ", " << g.rotor_speed_rad_s[2] << ", "
           << g.rotor_speed_rad_s[3] << ") rad/s";
-      failure = Error{msg.str()};
+      failure = Error::failed(msg.str());
       return *failure;
     }
     step_count = next;

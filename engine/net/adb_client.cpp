@@ -60,8 +60,8 @@ std::string explain_adb_state(const AdbDevice& d) {
 
 Expected<std::string> find_adb() {
   if (auto path = find_on_path("adb")) return *path;
-  return Error{"adb not found on PATH: install the Debian package adb (sudo apt-get install adb), which also brings "
-               "the udev rules for USB access"};
+  return Error::failed("adb not found on PATH: install the Debian package adb (sudo apt-get install adb), which also brings "
+                       "the udev rules for USB access");
 }
 
 Expected<AdbDevices> list_adb_devices() {
@@ -70,7 +70,7 @@ Expected<AdbDevices> list_adb_devices() {
   auto out = run_program(*path, {"devices"}, kAdbCommandTimeout_ms);
   if (!out) return out.error();
   if (out->exit_code != 0)
-    return Error{"'" + *path + " devices' failed (exit " + std::to_string(out->exit_code) + "): " + adb_message(*out)};
+    return Error::failed("'" + *path + " devices' failed (exit " + std::to_string(out->exit_code) + "): " + adb_message(*out));
   return AdbDevices{*path, parse_adb_devices(out->out)};
 }
 
@@ -79,12 +79,12 @@ Expected<std::string> choose_adb_device(const std::vector<AdbDevice>& devices, s
     for (const auto& d : devices) {
       if (d.serial != serial) continue;
       if (d.ready()) return d.serial;
-      return Error{"--adb-serial " + std::string(serial) + ": " + explain_adb_state(d)};
+      return Error::failed("--adb-serial " + std::string(serial) + ": " + explain_adb_state(d));
     }
     std::string listed;
     for (const auto& d : devices) listed += (listed.empty() ? "" : ", ") + d.serial + " (" + d.state + ")";
-    return Error{"--adb-serial " + std::string(serial) + ": no such device attached (`adb devices` lists " +
-                 (listed.empty() ? std::string("none") : listed) + ")"};
+    return Error::failed("--adb-serial " + std::string(serial) + ": no such device attached (`adb devices` lists " +
+                         (listed.empty() ? std::string("none") : listed) + ")");
   }
   std::vector<const AdbDevice*> ready;
   for (const auto& d : devices)
@@ -93,13 +93,13 @@ Expected<std::string> choose_adb_device(const std::vector<AdbDevice>& devices, s
   if (ready.size() > 1) {
     std::string listed;
     for (const auto* d : ready) listed += (listed.empty() ? "" : ", ") + d->serial;
-    return Error{std::to_string(ready.size()) + " devices are attached to adb (" + listed + "): choose the board with --adb-serial SERIAL"};
+    return Error::failed(std::to_string(ready.size()) + " devices are attached to adb (" + listed + "): choose the board with --adb-serial SERIAL");
   }
   if (devices.empty())
-    return Error{"no board attached to adb: plug in the VOXL2's USB-C cable and check that `adb devices` lists it"};
+    return Error::failed("no board attached to adb: plug in the VOXL2's USB-C cable and check that `adb devices` lists it");
   std::string why;
   for (const auto& d : devices) why += (why.empty() ? "" : "; ") + explain_adb_state(d);
-  return Error{"no adb device is ready: " + why};
+  return Error::failed("no adb device is ready: " + why);
 }
 
 Expected<Adb> Adb::connect(std::string_view serial) {
@@ -122,8 +122,8 @@ Expected<Adb> Adb::connect_network(const std::string& host, uint16_t port) {
   auto out = run_program(*path, {"connect", target}, kAdbCommandTimeout_ms);
   if (!out) return out.error();
   if (out->exit_code != 0 || !adb_connected(out->out + out->err))
-    return Error{"adb connect " + target + ": " + adb_message(*out) + " (the board listens for adb over the network after `adb tcpip " +
-                 std::to_string(kAdbTcpPort) + "` over USB; or use --adb for USB)"};
+    return Error::failed("adb connect " + target + ": " + adb_message(*out) + " (the board listens for adb over the network after `adb tcpip " +
+                         std::to_string(kAdbTcpPort) + "` over USB; or use --adb for USB)");
   return Adb(*path, target);
 }
 
@@ -133,8 +133,8 @@ Expected<ProgramOutput> Adb::run(const std::vector<std::string>& args, int timeo
   auto out = run_program(path_, full, timeout_ms);
   if (!out) return out.error();
   if (out->exit_code != 0)
-    return Error{"'" + command_line("adb", full) + "' failed (exit " + std::to_string(out->exit_code) + "): " + adb_message(*out) +
-                 " (is the board still attached? `adb devices`)"};
+    return Error::failed("'" + command_line("adb", full) + "' failed (exit " + std::to_string(out->exit_code) + "): " + adb_message(*out) +
+                         " (is the board still attached? `adb devices`)");
   return out;
 }
 
@@ -143,7 +143,7 @@ Expected<uint16_t> Adb::forward(uint16_t remote_port) const {
   if (!out) return out.error();
   // adb prints the local port it chose ("41235\n").
   auto port = parse_port(trim(out->out), "the port `adb forward tcp:0` printed");
-  if (!port) return Error{port.error().message + " (adb printed '" + trim(out->out) + "')"};
+  if (!port) return port.error().suffixed(" (adb printed '" + trim(out->out) + "')");
   return *port;
 }
 

@@ -76,7 +76,7 @@ Expected<std::string> AdbTunnel::relay_to_push() {
   auto uname = adb_.shell("uname -m");
   if (!uname) return uname.error();
   const std::string machine = normalize_machine(one_line(uname->out));
-  if (machine.empty()) return Error{"cannot tell the board's architecture: `adb shell uname -m` printed nothing"};
+  if (machine.empty()) return Error::failed("cannot tell the board's architecture: `adb shell uname -m` printed nothing");
   std::string tried;
   for (const auto& path : config_.relay_binaries) {
     if (!is_file(path)) {
@@ -87,10 +87,10 @@ Expected<std::string> AdbTunnel::relay_to_push() {
     if (arch && *arch == machine) return path;
     tried += (tried.empty() ? "" : ", ") + path + " (" + (arch ? *arch : std::string("not an executable")) + ")";
   }
-  return Error{"hitl-adb-relay is not on the board and there is no copy built for the board's " + machine +
-               " to push (tried: " + (tried.empty() ? std::string("none") : tried) +
-               "): install the voxl-hitl-px4-scripts package on the board, or build the relay for " + machine +
-               " (docs/adb.md) and pass --adb-relay FILE"};
+  return Error::failed("hitl-adb-relay is not on the board and there is no copy built for the board's " + machine +
+                       " to push (tried: " + (tried.empty() ? std::string("none") : tried) +
+                       "): install the voxl-hitl-px4-scripts package on the board, or build the relay for " + machine +
+                       " (docs/adb.md) and pass --adb-relay FILE");
 }
 
 Status AdbTunnel::start_relay() {
@@ -115,10 +115,10 @@ Status AdbTunnel::start_relay() {
     const bool missing = out->exit_code == 127 || text.find("not found") != std::string::npos ||
                          text.find("No such file") != std::string::npos;
     if (!missing || attempt == 2)
-      return Error{"starting hitl-adb-relay on the board failed: `adb shell " + program + args + "` said: " +
-                   (text.empty() ? "nothing (exit " + std::to_string(out->exit_code) + ")" : text)};
+      return Error::failed("starting hitl-adb-relay on the board failed: `adb shell " + program + args + "` said: " +
+                           (text.empty() ? "nothing (exit " + std::to_string(out->exit_code) + ")" : text));
   }
-  return Error{"starting hitl-adb-relay on the board failed"};
+  return Error::failed("starting hitl-adb-relay on the board failed");
 }
 
 Expected<std::unique_ptr<adb::FramedStream>> AdbTunnel::establish() {
@@ -134,13 +134,13 @@ Expected<std::unique_ptr<adb::FramedStream>> AdbTunnel::establish() {
   }
   auto r = connect();
   if (r.stream) return std::move(r.stream);
-  if (!r.relay_absent) return Error{r.error};
+  if (!r.relay_absent) return Error::failed(r.error);
   // 2. A board unplugged and back has lost its forwards: make it again.
   if (!fresh_forward) {
     if (auto made = make_forward(); !made) return made.error();
     r = connect();
     if (r.stream) return std::move(r.stream);
-    if (!r.relay_absent) return Error{r.error};
+    if (!r.relay_absent) return Error::failed(r.error);
   }
   // 3. Nothing listens on the board: start the relay (pushing it when the board has none).
   if (auto started = start_relay(); !started) return started.error();
@@ -150,8 +150,8 @@ Expected<std::unique_ptr<adb::FramedStream>> AdbTunnel::establish() {
     if (!r.relay_absent) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
-  return Error{"hitl-adb-relay started on the board but does not answer: " + r.error +
-               " (its log: adb shell cat " + adb::kRelayDaemonLogPath + ")"};
+  return Error::failed("hitl-adb-relay started on the board but does not answer: " + r.error +
+                       " (its log: adb shell cat " + adb::kRelayDaemonLogPath + ")");
 }
 
 }  // namespace hitl::net

@@ -77,12 +77,12 @@ std::optional<std::string> find_on_path(std::string_view name) {
 Expected<ProgramOutput> run_program(const std::string& program, const std::vector<std::string>& args, int timeout_ms) {
   const std::string what = "'" + command_line(program, args) + "'";
   int out_pipe[2], err_pipe[2];
-  if (::pipe2(out_pipe, O_CLOEXEC) != 0) return Error{what + ": cannot create a pipe: " + std::strerror(errno)};
+  if (::pipe2(out_pipe, O_CLOEXEC) != 0) return Error::unavailable(what + ": cannot create a pipe: " + std::strerror(errno));
   if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
     const std::string why = std::strerror(errno);
     ::close(out_pipe[0]);
     ::close(out_pipe[1]);
-    return Error{what + ": cannot create a pipe: " + why};
+    return Error::unavailable(what + ": cannot create a pipe: " + why);
   }
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
@@ -102,7 +102,7 @@ Expected<ProgramOutput> run_program(const std::string& program, const std::vecto
   if (spawned != 0) {
     ::close(out_pipe[0]);
     ::close(err_pipe[0]);
-    return Error{what + ": cannot start it: " + std::strerror(spawned)};
+    return Error::unavailable(what + ": cannot start it: " + std::strerror(spawned));
   }
   for (int fd : {out_pipe[0], err_pipe[0]}) ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL, 0) | O_NONBLOCK);
 
@@ -137,7 +137,7 @@ Expected<ProgramOutput> run_program(const std::string& program, const std::vecto
   ::close(err_pipe[0]);
   if (timed_out) {
     const std::string limit = timeout_ms % 1000 == 0 ? std::to_string(timeout_ms / 1000) + " s" : std::to_string(timeout_ms) + " ms";
-    return Error{what + " did not finish within " + limit + " (killed)"};
+    return Error::failed(what + " did not finish within " + limit + " (killed)");
   }
   result.exit_code = exit_code_of(status);
   return result;

@@ -1,10 +1,13 @@
 #include "engine/net/open_link.h"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstring>
 
 #include "engine/net/tcp_hub_link.h"
 #include "engine/net/tcp_links.h"
@@ -21,30 +24,35 @@ Expected<std::unique_ptr<Link>> as_link(Expected<std::unique_ptr<L>> link) {
 
 }  // namespace
 
+Expected<std::unique_ptr<UdpLink>> open_udp_link(const LinkSpec& spec, const LinkSettings& settings) {
+  if (spec.stream()) return Error::input(settings.name + ": '" + spec.text + "' is not a UDP link (udp: or udpin:)");
+  const std::string& host_what = settings.host_what.empty() ? settings.name : settings.host_what;
+  const std::string local_host = spec.host.empty() ? settings.bind_address : spec.host;
+  UdpLink::Config c;
+  c.endpoint.name = settings.name;
+  c.endpoint.receive_buffer_bytes = settings.receive_buffer_bytes;
+  if (spec.kind == LinkSpec::Kind::Udp) {
+    auto peer = SocketAddress::resolve(spec.host, spec.port);
+    if (!peer) return peer.error().prefixed(host_what + ": ");
+    c.endpoint.bind_address = settings.bind_address;
+    c.endpoint.bind_port = settings.local_port;
+    c.endpoint.peer = *peer;
+    c.endpoint.policy = PartnerPolicy::Fixed;
+    c.hear_peer_only = settings.hear_peer_only;
+  } else {
+    c.endpoint.bind_address = local_host;
+    c.endpoint.bind_port = spec.port;
+    c.endpoint.policy = PartnerPolicy::LastSender;
+  }
+  return UdpLink::open(c);
+}
+
 Expected<std::unique_ptr<Link>> open_link(const LinkSpec& spec, const LinkSettings& settings) {
   const std::string& host_what = settings.host_what.empty() ? settings.name : settings.host_what;
   const std::string local_host = spec.host.empty() ? settings.bind_address : spec.host;
   switch (spec.kind) {
     case LinkSpec::Kind::Udp:
-    case LinkSpec::Kind::UdpIn: {
-      UdpLink::Config c;
-      c.endpoint.name = settings.name;
-      c.endpoint.receive_buffer_bytes = settings.receive_buffer_bytes;
-      if (spec.kind == LinkSpec::Kind::Udp) {
-        auto peer = SocketAddress::resolve(spec.host, spec.port);
-        if (!peer) return peer.error().prefixed(host_what + ": ");
-        c.endpoint.bind_address = settings.bind_address;
-        c.endpoint.bind_port = settings.local_port;
-        c.endpoint.peer = *peer;
-        c.endpoint.policy = PartnerPolicy::Fixed;
-        c.hear_peer_only = settings.hear_peer_only;
-      } else {
-        c.endpoint.bind_address = local_host;
-        c.endpoint.bind_port = spec.port;
-        c.endpoint.policy = PartnerPolicy::LastSender;
-      }
-      return as_link(UdpLink::open(c));
-    }
+    case LinkSpec::Kind::UdpIn: return as_link(open_udp_link(spec, settings));
     case LinkSpec::Kind::Tcp: {
       auto server = SocketAddress::resolve(spec.host, spec.port);
       if (!server) return server.error().prefixed(host_what + ": ");
@@ -76,6 +84,20 @@ bool udp_listener_may_be_at(const SocketAddress& address) {
   }
   ::close(fd);
   return listening;
+}
+
+Expected<bool> udp_port_in_use(uint16_t port) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return Error::unavailable(std::string("cannot open a socket: ") + std::strerror(errno));
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port);
+  a.sin_addr.s_addr = htonl(INADDR_ANY);
+  const int err = ::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) == 0 ? 0 : errno;
+  ::close(fd);
+  if (err == 0) return false;
+  if (err == EADDRINUSE) return true;
+  return Error::unavailable("cannot bind UDP " + std::to_string(port) + ": " + std::strerror(err));
 }
 
 }  // namespace hitl::net

@@ -17,6 +17,7 @@
 #include "base/common/expected.h"
 #include "engine/net/link.h"
 #include "engine/net/link_spec.h"
+#include "engine/net/udp_link.h"
 
 namespace hitl::net {
 
@@ -36,9 +37,19 @@ struct LinkSettings {
 /// or a server that does not answer is an Error naming settings.name and the address.
 Expected<std::unique_ptr<Link>> open_link(const LinkSpec& spec, const LinkSettings& settings);
 
+/// open_link() for udp: and udpin:, typed: for the owner that reads the socket's own figures (the
+/// buffers the kernel granted, SO_MEMINFO's drops: the bridge's board link). tcp: and tcpin: are
+/// refused (input).
+Expected<std::unique_ptr<UdpLink>> open_udp_link(const LinkSpec& spec, const LinkSettings& settings);
+
 /// Whether something may listen on UDP `address`: false only when the kernel says at once that
 /// nothing does (a connected UDP socket gets ICMP port-unreachable as ECONNREFUSED; on loopback
 /// within microseconds). `hitl arm`'s auto link asks it before trying a running session.
 bool udp_listener_may_be_at(const SocketAddress& address);
+
+/// Whether a socket holds UDP `port` on every interface: binding 0.0.0.0:port says EADDRINUSE (true)
+/// or succeeds (false; the socket is closed at once). Any other refusal is an Error (unavailable)
+/// naming the port. `hitl doctor` asks it before looking for the holders in /proc.
+Expected<bool> udp_port_in_use(uint16_t port);
 
 }  // namespace hitl::net

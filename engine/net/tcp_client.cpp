@@ -17,14 +17,14 @@ Expected<TcpClient> TcpClient::connect(const SocketAddress& to, int timeout_ms, 
   if (::connect(fd, to.get(), to.length()) != 0 && errno != EINPROGRESS) {
     const std::string why = std::strerror(errno);
     ::close(fd);
-    return Error{name + ": cannot connect to TCP " + to.to_string() + ": " + why};
+    return Error::failed(name + ": cannot connect to TCP " + to.to_string() + ": " + why);
   }
   pollfd p{fd, POLLOUT, 0};
   int err = 0;
   socklen_t len = sizeof err;
   if (::poll(&p, 1, timeout_ms) <= 0 || ::getsockopt(fd, SOL_SOCKET, SO_ERROR, &err, &len) != 0 || err != 0) {
     ::close(fd);
-    return Error{name + ": cannot connect to TCP " + to.to_string() + ": " + (err ? std::strerror(err) : "timed out")};
+    return Error::failed(name + ": cannot connect to TCP " + to.to_string() + ": " + (err ? std::strerror(err) : "timed out"));
   }
   const int on = 1;
   ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
@@ -61,9 +61,9 @@ Status TcpClient::send(std::span<const uint8_t> bytes) {
       continue;
     } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
       pollfd p{fd_, POLLOUT, 0};
-      if (::poll(&p, 1, 1000) <= 0) return Error{name_ + ": " + peer_.to_string() + " stopped reading"};
+      if (::poll(&p, 1, 1000) <= 0) return Error::failed(name_ + ": " + peer_.to_string() + " stopped reading");
     } else {
-      return Error{name_ + ": connection to " + peer_.to_string() + " lost: " + std::strerror(errno)};
+      return Error::failed(name_ + ": connection to " + peer_.to_string() + " lost: " + std::strerror(errno));
     }
   }
   return Ok{};
@@ -78,10 +78,10 @@ Expected<std::span<const uint8_t>> TcpClient::receive() {
   for (;;) {
     const ssize_t n = ::recv(fd_, buffer_.data(), buffer_.size(), MSG_DONTWAIT);
     if (n > 0) return std::span<const uint8_t>(buffer_.data(), static_cast<std::size_t>(n));
-    if (n == 0) return Error{name_ + ": " + peer_.to_string() + " closed the connection"};
+    if (n == 0) return Error::failed(name_ + ": " + peer_.to_string() + " closed the connection");
     if (errno == EINTR) continue;
     if (errno == EAGAIN || errno == EWOULDBLOCK) return std::span<const uint8_t>{};
-    return Error{name_ + ": connection to " + peer_.to_string() + " lost: " + std::strerror(errno)};
+    return Error::failed(name_ + ": connection to " + peer_.to_string() + " lost: " + std::strerror(errno));
   }
 }
 

@@ -68,7 +68,7 @@ std::size_t TcpClientLink::read_some(std::size_t max_reads, const ChunkHandler& 
 }
 
 Status TcpClientLink::send(std::span<const uint8_t> bytes) {
-  if (!client_) return Error{name_ + ": not connected to " + config_.server.to_string()};
+  if (!client_) return Error::failed(name_ + ": not connected to " + config_.server.to_string());
   auto st = client_->send(bytes);
   if (st) {
     ++stats_.datagrams_out;
@@ -119,7 +119,7 @@ std::size_t TcpServerLink::read_some(std::size_t max_reads, const ChunkHandler& 
 }
 
 Status TcpServerLink::send(std::span<const uint8_t> bytes) {
-  if (!server_.connected()) return Error{name_ + ": no client connected"};
+  if (!server_.connected()) return Error::failed(name_ + ": no client connected");
   auto st = server_.send(bytes);
   if (st) {
     ++stats_.datagrams_out;

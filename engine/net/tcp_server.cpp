@@ -74,26 +74,26 @@ bool TcpServer::accept_client(int timeout_ms) {
 }
 
 Expected<std::span<const uint8_t>> TcpServer::receive() {
-  if (client_fd_ < 0) return Error{name_ + ": no client connected"};
+  if (client_fd_ < 0) return Error::failed(name_ + ": no client connected");
   for (;;) {
     const ssize_t n = ::recv(client_fd_, buffer_.data(), buffer_.size(), MSG_DONTWAIT);
     if (n > 0) return std::span<const uint8_t>(buffer_.data(), static_cast<std::size_t>(n));
     if (n == 0) {
       drop_client();
-      return Error{name_ + ": the client closed the connection"};
+      return Error::failed(name_ + ": the client closed the connection");
     }
     if (errno == EINTR) continue;
     if (errno == EAGAIN || errno == EWOULDBLOCK) return std::span<const uint8_t>{};
     const std::string why = std::strerror(errno);
     drop_client();
-    return Error{name_ + ": connection lost: " + why};
+    return Error::failed(name_ + ": connection lost: " + why);
   }
 }
 
 Status TcpServer::send(std::span<const uint8_t> bytes) {
   std::size_t sent = 0;
   while (sent < bytes.size()) {
-    if (client_fd_ < 0) return Error{name_ + ": no client connected"};
+    if (client_fd_ < 0) return Error::failed(name_ + ": no client connected");
     const ssize_t n = ::send(client_fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
     if (n > 0) {
       sent += static_cast<std::size_t>(n);
@@ -102,12 +102,12 @@ Status TcpServer::send(std::span<const uint8_t> bytes) {
     if (n < 0 && errno == EINTR) continue;
     if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
       pollfd p{client_fd_, POLLOUT, 0};
-      if (::poll(&p, 1, 1000) <= 0) return Error{name_ + ": the client stopped reading"};
+      if (::poll(&p, 1, 1000) <= 0) return Error::failed(name_ + ": the client stopped reading");
       continue;
     }
     const std::string why = n < 0 ? std::strerror(errno) : "closed";
     drop_client();
-    return Error{name_ + ": connection lost: " + why};
+    return Error::failed(name_ + ": connection lost: " + why);
   }
   return Ok{};
 }

@@ -237,11 +237,11 @@ Error UdpEndpoint::refused(const SocketAddress& to, int error) {
     failed_destinations_.push_back(to);
     unreported_send_errors_.push_back(text);
   }
-  return Error{std::move(text)};
+  return Error::failed(std::move(text));
 }
 
 Status UdpEndpoint::send(std::span<const uint8_t> bytes) {
-  if (!partner_) return Error{config_.name + ": no partner to send to yet"};
+  if (!partner_) return Error::failed(config_.name + ": no partner to send to yet");
   return send_to(*partner_, bytes);
 }
 

@@ -11,6 +11,8 @@ DspHitlExpectedRates dsp_hitl_expected_rates(double mag_published_hz, double bar
   r.baro_published_hz = baro_published_hz;
   return r;
 }
+
+DspHitlExpectedRates spec_dsp_hitl_expected_rates() { return dsp_hitl_expected_rates(kSpecMagRate_hz, kSpecBaroRate_hz); }
 namespace {
 
 std::array<uint64_t, 5> counts(const target::DspHitlCounters& c) {

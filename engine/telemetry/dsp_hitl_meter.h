@@ -30,6 +30,9 @@ struct DspHitlExpectedRates {
 /// The spec's split rates (base/contract/data_rates.h) with sensor_mag and sensor_baro published at
 /// the given rates (the simulator's mag and baro rates; the spec's table: 50 Hz and 10 Hz).
 DspHitlExpectedRates dsp_hitl_expected_rates(double mag_published_hz, double baro_published_hz);
+/// The spec's table throughout (kSpecMagRate_hz, kSpecBaroRate_hz): for whoever does not know the
+/// simulator that feeds the board (hitl doctor, hitl bridge).
+DspHitlExpectedRates spec_dsp_hitl_expected_rates();
 
 struct DspHitlCounterView {
   const char* name = "";           ///< the status text's label

@@ -74,7 +74,7 @@ Expected<CommandOutcome> CommandClient::send(uint16_t command, const std::array<
       break;
     }
   }
-  if (!result) return Error{"no COMMAND_ACK for command " + std::to_string(command) + " after " + std::to_string(retries) + " tries"};
+  if (!result) return Error::failed("no COMMAND_ACK for command " + std::to_string(command) + " after " + std::to_string(retries) + " tries");
   outcome.result = static_cast<mavlink::MavResult>(*result);
   // STATUSTEXTs often trail the ACK by a moment: give them a chance to arrive.
   if (!outcome.accepted()) link_.wait(0.2, handler);

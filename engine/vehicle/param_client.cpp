@@ -31,7 +31,7 @@ Expected<std::vector<Param>> ParamClient::download(const std::function<void(std:
     link_.send(list);
     link_.wait(kTimeout_s * 2, take);  // until every index arrived, or the burst went quiet
   }
-  if (!got.total()) return Error{"no PARAM_VALUE in answer to PARAM_REQUEST_LIST"};
+  if (!got.total()) return Error::failed("no PARAM_VALUE in answer to PARAM_REQUEST_LIST");
   for (int round = 0; round < kRetries && got.received() < *got.total(); ++round) {
     for (uint16_t i = 0; i < *got.total(); ++i) {
       if (got.has(i)) continue;
@@ -44,8 +44,8 @@ Expected<std::vector<Param>> ParamClient::download(const std::function<void(std:
     link_.wait(kTimeout_s, take);
   }
   if (got.received() < *got.total())
-    return Error{"received " + std::to_string(got.received()) + " of " + std::to_string(*got.total()) + " parameters after " +
-                 std::to_string(kRetries) + " rounds of re-requests"};
+    return Error::failed("received " + std::to_string(got.received()) + " of " + std::to_string(*got.total()) + " parameters after " +
+                         std::to_string(kRetries) + " rounds of re-requests");
   return got.params();
 }
 
@@ -66,7 +66,7 @@ Expected<ParamValue> ParamClient::get(const std::string& name) {
       return true;
     });
   }
-  if (!value) return Error{"no answer for parameter " + name + " (it may not exist on this board)"};
+  if (!value) return Error::failed("no answer for parameter " + name + " (it may not exist on this board)");
   return *value;
 }
 
@@ -88,8 +88,8 @@ Expected<ParamValue> ParamClient::set(const std::string& name, const ParamValue&
       return true;
     });
   }
-  if (!echo) return Error{name + ": no PARAM_VALUE echo after " + std::to_string(kRetries) + " tries"};
-  if (!(*echo == value)) return Error{name + ": the board kept " + echo->to_string() + " (asked for " + value.to_string() + ")"};
+  if (!echo) return Error::failed(name + ": no PARAM_VALUE echo after " + std::to_string(kRetries) + " tries");
+  if (!(*echo == value)) return Error::failed(name + ": the board kept " + echo->to_string() + " (asked for " + value.to_string() + ")");
   return *echo;
 }
 

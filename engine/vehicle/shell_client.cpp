@@ -32,10 +32,10 @@ Expected<std::string> ShellClient::run(const std::string& line, double timeout_s
   ShellOutput out;
   auto collect = [&](const mavlink::Frame& f) { return f.is<msg::SerialControl>() && out.append(f.as<msg::SerialControl>()); };
   send_text("\n");
-  if (!link_.wait(timeout_s, collect)) return Error{"the shell did not answer (SERIAL_CONTROL device 10) within " + std::to_string(static_cast<int>(timeout_s)) + " s"};
+  if (!link_.wait(timeout_s, collect)) return Error::failed("the shell did not answer (SERIAL_CONTROL device 10) within " + std::to_string(static_cast<int>(timeout_s)) + " s");
   out.clear();
   send_text(line + "\n");
-  if (!link_.wait(timeout_s, collect)) return Error{"'" + line + "' did not finish within " + std::to_string(static_cast<int>(timeout_s)) + " s; output so far:\n" + out.text()};
+  if (!link_.wait(timeout_s, collect)) return Error::failed("'" + line + "' did not finish within " + std::to_string(static_cast<int>(timeout_s)) + " s; output so far:\n" + out.text());
   // Drop the echoed command line and the final prompt.
   return out.body();
 }

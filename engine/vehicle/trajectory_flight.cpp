@@ -150,7 +150,7 @@ Expected<FlightResult> fly_trajectory(VehicleLink& link, Trajectory trajectory, 
   if (!home_amsl_m || !have_position) {
     forget_truth();
     if (stopped()) return FlightResult{PilotState::Init, "", true, options.mode, {}, {}, {}};
-    return Error{"no position estimate from the board (LOCAL_POSITION_NED, GLOBAL_POSITION_INT)"};
+    return Error::failed("no position estimate from the board (LOCAL_POSITION_NED, GLOBAL_POSITION_INT)");
   }
   pc.home_alt_msl_m = *home_amsl_m;
   flight.emplace(std::move(trajectory), pc, options.keep_trace);

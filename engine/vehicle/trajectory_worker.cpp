@@ -10,7 +10,7 @@ TrajectoryWorker::~TrajectoryWorker() {
 
 Status TrajectoryWorker::start(LinkOptions link, Trajectory trajectory, FlyTrajectoryOptions options, FlightNotes notes, Done done) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (running_.load()) return Error{"a trajectory is already being flown"};
+  if (running_.load()) return Error::failed("a trajectory is already being flown");
   if (thread_.joinable()) thread_.join();  // the last flight's thread, finished
   stop_.store(false);
   running_.store(true);
@@ -18,7 +18,7 @@ Status TrajectoryWorker::start(LinkOptions link, Trajectory trajectory, FlyTraje
   options.stop = &stop_;
   thread_ = std::thread([this, link, trajectory = std::move(trajectory), options, notes = std::move(notes),
                          done = std::move(done)]() mutable {
-    Expected<FlightResult> result = Error{"not flown"};
+    Expected<FlightResult> result = Error::failed("not flown");
     if (auto connected = VehicleLink::connect(link)) {
       result = fly_trajectory(**connected, std::move(trajectory), options, notes);
     } else {

@@ -139,17 +139,17 @@ Expected<std::unique_ptr<VehicleLink>> VehicleLink::connect(const LinkOptions& o
       case net::LinkSpec::Kind::TcpIn: description = "serving TCP " + port_text; break;
     }
     if (parsed->kind == net::LinkSpec::Kind::TcpIn && !opened.value()->wait_connected(static_cast<int>(options.timeout_s * 1000)))
-      return Error{"no autopilot connected to TCP " + port_text + " (--connect " + parsed->text + ") within " +
-                   std::to_string(static_cast<int>(options.timeout_s)) + " s"};
+      return Error::failed("no autopilot connected to TCP " + port_text + " (--connect " + parsed->text + ") within " +
+                           std::to_string(static_cast<int>(options.timeout_s)) + " s");
     link = make(std::move(opened.value()), description);
   }
   const bool found = link->discover(options.timeout_s);
-  if (!found && !link->send_error_.empty()) return Error{"no autopilot " + link->description() + ": " + link->send_error_};
+  if (!found && !link->send_error_.empty()) return Error::failed("no autopilot " + link->description() + ": " + link->send_error_);
   if (!found)
-    return Error{"no autopilot HEARTBEAT " + link->description() + " within " + std::to_string(static_cast<int>(options.timeout_s)) +
-                 " s. Is the board up (or `hitl target` running)? A PX4 MAVLink instance answers only the first address "
-                 "and port it heard: if another tool talked to it first from another port, restart PX4 on the board "
-                 "(voxl-px4-hitl start) or talk through `hitl bridge`"};
+    return Error::failed("no autopilot HEARTBEAT " + link->description() + " within " + std::to_string(static_cast<int>(options.timeout_s)) +
+                         " s. Is the board up (or `hitl target` running)? A PX4 MAVLink instance answers only the first address "
+                         "and port it heard: if another tool talked to it first from another port, restart PX4 on the board "
+                         "(voxl-px4-hitl start) or talk through `hitl bridge`");
   return link;
 }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <csignal>
+#include <fstream>
 
 #include "tests/support/process.h"
 
@@ -136,6 +137,27 @@ TEST(FaultsE2E, BadFaultsAreRefusedWithExitTwoNamingTheProblem) {
     argv.insert(argv.end(), args.begin(), args.end());
     test::Process p(argv);
     EXPECT_EQ(p.wait(20s), 2) << args[1];
+    EXPECT_NE(p.err().find(message), std::string::npos) << p.err();
+  }
+}
+
+TEST(FaultsE2E, ABadScenarioFileIsRefusedWithExitTwoNamingTheFileAndTheEvent) {
+  // What is wrong inside the file is the file's (input): exit 2 before anything runs, the message
+  // naming the option, the file and the event.
+  const std::string dir = test::temp_dir();
+  const std::pair<std::string, std::string> files[] = {
+      {R"({"events": [{"at_s": 5, "fault": "gps-los"}]})", "events[0]: unknown fault 'gps-los'; did you mean 'gps-loss'?"},
+      {R"({"events": [{"at_s": 5, "fault": "motor", "args": [7, 0.5]}]})", "events[0]: fault motor: i must be within 0..3"},
+      {R"({"events": [{"at_s": 5, "fault": "gps-loss"}], "then": 1})", "unknown key 'then'"},
+      {"{\"events\": [", "not JSON"},
+  };
+  int n = 0;
+  for (const auto& [content, message] : files) {
+    const std::string path = dir + "/bad" + std::to_string(n++) + ".json";
+    std::ofstream(path) << content;
+    test::Process p({test::hitl_binary(), "sim", "--scenario", path, "--local-port", "0", "--clients", "0", "--duration", "1"});
+    EXPECT_EQ(p.wait(20s), 2) << content << ": " << p.err();
+    EXPECT_NE(p.err().find("--scenario: scenario '" + path + "': "), std::string::npos) << p.err();
     EXPECT_NE(p.err().find(message), std::string::npos) << p.err();
   }
 }

@@ -203,5 +203,22 @@ TEST(LinkGrammarE2E, AMalformedLinkExits2NamingTheOptionAndTheProblem) {
   }
 }
 
+TEST(LinkGrammarE2E, AnEndpointThatCannotBeOpenedExits2NamingIt) {
+  // A well-formed --endpoint whose port another socket holds: unavailable, 2, the endpoint named.
+  net::LinkSettings settings;
+  settings.name = "holder";
+  net::LinkSpec held_spec;
+  held_spec.kind = net::LinkSpec::Kind::UdpIn;
+  held_spec.host = "127.0.0.1";
+  auto held = net::open_link(held_spec, settings);
+  ASSERT_TRUE(held.ok()) << held.error().message;
+  const std::string endpoint = "udpin:127.0.0.1:" + std::to_string((*held)->local_address()->port());
+  auto r = test::run_hitl({"bridge", "--endpoint", endpoint, "--local-port", std::to_string(test::free_udp_port()), "--clients", "0",
+                           "--duration", "1"},
+                          30s);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--endpoint " + endpoint + ": cannot bind UDP"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace hitl

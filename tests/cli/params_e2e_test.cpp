@@ -124,6 +124,10 @@ TEST_F(ParamsE2E, ExportLoadRoundTripGetAndBadValues) {
   const auto file = test::temp_dir() + "/board.params";
   EXPECT_EQ(params({"set", "MPC_XY_P", "1.3"}).exit_code, 0);
   ASSERT_EQ(params({"export", file}).exit_code, 0);
+  // A file that cannot be written is this machine's (unavailable): 2, naming the file.
+  const auto unwritable = params({"export", "/nonexistent-hitl-dir/board.params"});
+  EXPECT_EQ(unwritable.exit_code, 2) << unwritable.err;
+  EXPECT_NE(unwritable.err.find("cannot write '/nonexistent-hitl-dir/board.params'"), std::string::npos) << unwritable.err;
   std::ifstream in(file);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("1\t1\tMPC_XY_P\t1.3\t9"), std::string::npos);

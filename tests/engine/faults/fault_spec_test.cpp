@@ -48,6 +48,7 @@ TEST(FaultSpec, RefusesBadInputNamingTheFaultAndTheProblem) {
     auto f = parse_fault(text, suggest);
     ASSERT_FALSE(f) << text;
     EXPECT_NE(f.error().message.find(what), std::string::npos) << text << ": " << f.error().message;
+    EXPECT_EQ(f.error().kind, ErrorKind::Input) << text;  // the user's value: exit 2, whichever option gave it
   }
 }
 
@@ -78,6 +79,7 @@ TEST(Scenario, RefusesBadFilesNamingTheEvent) {
     ASSERT_FALSE(s) << text;
     EXPECT_NE(s.error().message.find("scenario 'x.json'"), std::string::npos) << s.error().message;
     EXPECT_NE(s.error().message.find(what), std::string::npos) << text << ": " << s.error().message;
+    EXPECT_EQ(s.error().kind, ErrorKind::Input) << text;
   }
   auto big = load_scenario("/dev/zero");
   ASSERT_FALSE(big);
@@ -178,6 +180,8 @@ TEST(FaultSchedule, FaultsStartedAndClearedByHand) {
   const auto bad = parse_live_fault("motor:7,0.5");
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().message.find("@0"), std::string::npos) << bad.error().message;
+  EXPECT_EQ(bad.error().kind, ErrorKind::Input);
+  EXPECT_EQ(at.error().kind, ErrorKind::Input);
 
   FaultSchedule schedule;
   schedule.update(10.0);

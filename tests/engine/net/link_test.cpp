@@ -353,5 +353,51 @@ TEST(OpenLink, EachKindOfTheGrammarOpensItsLink) {
       << unresolvable.error().message;
 }
 
+TEST(OpenLink, TheUdpKindsOpenTypedForTheirSocketsFigures) {
+  // The bridge's board link: udp: from a fixed local port, hearing its peer only, with its buffers.
+  UdpEndpoint::Config bc;
+  bc.bind_address = "127.0.0.1";
+  auto board = UdpEndpoint::open(bc);
+  ASSERT_TRUE(board.ok()) << board.error().message;
+  const uint16_t board_port = board->local_address().port();
+  LinkSettings settings;
+  settings.name = "the board link";
+  settings.bind_address = "127.0.0.1";
+  settings.hear_peer_only = true;
+  settings.receive_buffer_bytes = 64 << 10;
+  auto link = open_udp_link(parse_link_spec("udp:127.0.0.1:" + std::to_string(board_port)).value(), settings);
+  ASSERT_TRUE(link.ok()) << link.error().message;
+  EXPECT_GE(link.value()->buffer_sizes().receive_bytes, 64 << 10);
+  EXPECT_EQ(link.value()->peer()->port(), board_port);
+  mavlink::FrameEncoder from_board(1, 1), stranger(9, 1);
+  const SocketAddress link_address = *link.value()->local_address();
+  ASSERT_TRUE(board->send_to(link_address, heartbeat_frame(1, from_board)).ok());
+  auto other = udp(0, PartnerPolicy::Fixed, link_address);
+  ASSERT_TRUE(other->send(heartbeat_frame(9, stranger)).ok());
+  EXPECT_EQ(sysids_heard(*link.value(), 1), (std::vector<uint8_t>{1}));
+  EXPECT_EQ(sysids_heard(*link.value(), 1, 0.2), (std::vector<uint8_t>{}));  // the stranger's is dropped, counted
+  EXPECT_EQ(link.value()->stats().ignored_other_address, 1u);
+  // A stream kind is no UDP link.
+  auto tcp = open_udp_link(parse_link_spec("tcp:127.0.0.1:5760").value(), settings);
+  ASSERT_FALSE(tcp.ok());
+  EXPECT_EQ(tcp.error().kind, ErrorKind::Input);
+  EXPECT_NE(tcp.error().message.find("'tcp:127.0.0.1:5760' is not a UDP link"), std::string::npos) << tcp.error().message;
+}
+
+TEST(UdpPortInUse, SaysWhetherASocketHoldsThePort) {
+  UdpLink::Config c;
+  c.endpoint.bind_address = "0.0.0.0";
+  auto held = UdpLink::open(c);
+  ASSERT_TRUE(held.ok()) << held.error().message;
+  const uint16_t port = held.value()->local_address()->port();
+  auto in_use = udp_port_in_use(port);
+  ASSERT_TRUE(in_use.ok()) << in_use.error().message;
+  EXPECT_TRUE(*in_use);
+  held.value().reset();
+  auto free_now = udp_port_in_use(port);
+  ASSERT_TRUE(free_now.ok()) << free_now.error().message;
+  EXPECT_FALSE(*free_now);
+}
+
 }  // namespace
 }  // namespace hitl::net

@@ -118,6 +118,16 @@ mavlink::Frame frame_of(const M& message, uint8_t sysid = 1) {
   return out;
 }
 
+TEST(DspHitlMeter, TheSpecsRatesForWhoeverDoesNotKnowTheSimulator) {
+  // hitl doctor and hitl bridge's dashboard: the spec's table, not a vehicle model's defaults.
+  const DspHitlExpectedRates r = spec_dsp_hitl_expected_rates();
+  EXPECT_DOUBLE_EQ(r.imu_received_hz, 250);
+  EXPECT_DOUBLE_EQ(r.imu_published_hz, 250);
+  EXPECT_DOUBLE_EQ(r.mag_baro_received_hz, 100);
+  EXPECT_DOUBLE_EQ(r.mag_published_hz, 50);
+  EXPECT_DOUBLE_EQ(r.baro_published_hz, 10);
+}
+
 TEST(VehicleTelemetry, FoldsTheAutopilotsMessages) {
   VehicleTelemetryTracker t;
   EXPECT_FALSE(t.state().heartbeat);
