@@ -156,8 +156,8 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
     session.vio = false;
     if (!o.speed_given && !o.tui) o.speed = kPx4DemoSpeed;
     if (!(o.speed > 0)) {
-      log_error("demo", "--speed 0 with --px4: PX4 runs in lockstep at a stated factor; give --speed K (K <= 8 on 2 cores)");
-      return kExitUsage;
+      return log_error("demo", Error::usage("--speed 0 with --px4: PX4 runs in lockstep at a stated factor; give --speed K "
+                                            "(K <= 8 on 2 cores)"));
     }
   }
   for (uint16_t* port : {&board_config.hil_port, &board_config.gcs_port, &board_config.vio_port, &session.local_port}) {
@@ -240,7 +240,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   vehicle::TelemetryFeed feed(link, vehicle::dashboard_streams(), [](mavlink::MavSeverity, const std::string&) {},
                               hil::kSimulatorSystemId);
 
-  Expected<hil::Session::EndReason> end = Error{"not run"};
+  Expected<hil::Session::EndReason> end = Error::failed("not run");
   if (o.tui) {
     tui::SimDashboardConfig dc;
     dc.title = "hitl demo";

@@ -64,7 +64,7 @@ Status read_faults(const SimOptions& opt, std::vector<faults::FaultSpec>& out) {
   const faults::Suggest suggest = [](const std::string& name) { return closest(name, faults::fault_names()).value_or(""); };
   for (const auto& text : opt.fault_specs) {
     auto spec = faults::parse_fault(text, suggest);
-    if (!spec) return Error::usage("--fault " + spec.error().message);
+    if (!spec) return spec.error().prefixed("--fault ");
     out.push_back(*spec);
   }
   if (!opt.scenario_file.empty()) {
@@ -161,8 +161,8 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
       (cfg.bind_address == "0.0.0.0" || cfg.bind_address == cfg.clients_bind)) {
     // Both would bind the same UDP port: the second bind failed with "another process is bound
     // there", which sent the user looking for a process that was this one.
-    log_error(cmd, "--clients " + std::to_string(cfg.clients_port) + " is also the --local-port of the HIL link; give them different ports");
-    return kExitUsage;
+    return log_error(cmd, Error::usage("--clients " + std::to_string(cfg.clients_port) +
+                                       " is also the --local-port of the HIL link; give them different ports"));
   }
   if (cfg.local_port == 0)
     std::cerr << "hitl sim: warning: --local-port 0 picks an ephemeral port; a PX4 instance keeps the first port it "
@@ -195,7 +195,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
   }
   const auto& stop = stop_flag_on_signals();
   log_info(global, "hitl sim: " + (*session)->describe() + (opt.tui ? "" : " (Ctrl-C to stop)"));
-  Expected<hil::Session::EndReason> end = Error{"not run"};
+  Expected<hil::Session::EndReason> end = Error::failed("not run");
   if (opt.tui) {
     tui::SimDashboardConfig dc;
     dc.trajectory_file = opt.trajectory_file;
