@@ -164,36 +164,100 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   const pid_t parent = ::getpid();
-
-  const pid_t pid = ::fork();
-  if (pid < 0) {
+  int pid_pipe[2];
+  if (::pipe2(pid_pipe, O_CLOEXEC) != 0) {
     const int err = errno;
     ::close(console);
     if (null_in >= 0) ::close(null_in);
+    return Error::unavailable(std::string("cannot start PX4: pipe: ") + std::strerror(err));
+  }
+
+  // hitl -> a supervisor (a fork of hitl that never execs) -> PX4 in a process group of its own.
+  // PX4 runs its start script in a shell that starts PX4's modules as client processes; killed with
+  // PX4 alone (PR_SET_PDEATHSIG reaches only a direct child), that shell went on and started them in
+  // the next PX4 of the same instance. The supervisor dies with hitl and then kills PX4's whole
+  // group; when PX4 exits it kills what PX4 left in its group and exits with PX4's code.
+  const pid_t supervisor = ::fork();
+  if (supervisor < 0) {
+    const int err = errno;
+    ::close(console);
+    if (null_in >= 0) ::close(null_in);
+    ::close(pid_pipe[0]);
+    ::close(pid_pipe[1]);
     return Error::unavailable(std::string("cannot start PX4: fork: ") + std::strerror(err));
   }
-  if (pid == 0) {
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // PX4 ends with hitl, however hitl ends
+  if (supervisor == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGUSR2);
     if (::getppid() != parent) ::_exit(127);
-    ::setpgid(0, 0);  // its own group: a Ctrl-C at hitl's terminal is hitl's to handle
-    if (null_in >= 0) ::dup2(null_in, 0);
-    ::dup2(console, 1);
-    ::dup2(console, 2);
-    if (::chdir(options.work_dir.c_str()) != 0) ::_exit(127);
-    ::execve(argv[0], argv.data(), envp.data());
-    ::_exit(127);
+    // hitl's other descriptors (its sockets) are not the supervisor's to hold.
+    for (int fd = 3; fd < 4096; ++fd)
+      if (fd != console && fd != null_in && fd != pid_pipe[1]) ::close(fd);
+    sigset_t all;
+    ::sigfillset(&all);
+    ::sigprocmask(SIG_BLOCK, &all, nullptr);  // nothing interrupts the fork below
+    const pid_t px4 = ::fork();
+    if (px4 < 0) ::_exit(127);
+    if (px4 == 0) {
+      ::setpgid(0, 0);  // its own group: a Ctrl-C at hitl's terminal is hitl's to handle
+      sigset_t none;
+      ::sigemptyset(&none);
+      ::sigprocmask(SIG_SETMASK, &none, nullptr);
+      struct sigaction dfl {};
+      dfl.sa_handler = SIG_DFL;
+      ::sigaction(SIGUSR2, &dfl, nullptr);
+      if (null_in >= 0) ::dup2(null_in, 0);
+      ::dup2(console, 1);
+      ::dup2(console, 2);
+      if (::chdir(options.work_dir.c_str()) != 0) ::_exit(127);
+      ::execve(argv[0], argv.data(), envp.data());
+      ::_exit(127);
+    }
+    ::setpgid(px4, px4);
+    const int32_t px4_pid = px4;
+    (void)!::write(pid_pipe[1], &px4_pid, sizeof px4_pid);
+    ::close(pid_pipe[1]);
+    // Wait for PX4's end or hitl's: SIGCHLD or SIGUSR2 (PR_SET_PDEATHSIG), taken synchronously.
+    sigset_t wanted;
+    ::sigemptyset(&wanted);
+    ::sigaddset(&wanted, SIGCHLD);
+    ::sigaddset(&wanted, SIGUSR2);
+    for (;;) {
+      int status = 0;
+      const pid_t done = ::waitpid(px4, &status, WNOHANG);
+      if (done == px4) {
+        ::kill(-px4, SIGKILL);  // what PX4 left in its group
+        ::_exit(WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 127);
+      }
+      if (::getppid() != parent) {  // hitl is gone (its SIGUSR2 may have come before the check above)
+        ::kill(-px4, SIGKILL);
+        ::_exit(128 + SIGKILL);
+      }
+      int sig = 0;
+      ::sigwait(&wanted, &sig);
+    }
   }
-  ::setpgid(pid, pid);  // also from here, so that it holds before either side goes on
   ::close(console);
   if (null_in >= 0) ::close(null_in);
-  return std::unique_ptr<Px4Process>(new Px4Process(pid, options));
+  ::close(pid_pipe[1]);
+  int32_t px4_pid = -1;
+  ssize_t got = -1;
+  do {
+    got = ::read(pid_pipe[0], &px4_pid, sizeof px4_pid);
+  } while (got < 0 && errno == EINTR);
+  ::close(pid_pipe[0]);
+  if (got != static_cast<ssize_t>(sizeof px4_pid) || px4_pid <= 0) {
+    int status = 0;
+    ::waitpid(supervisor, &status, 0);
+    return Error::unavailable("cannot start PX4: its supervisor process failed");
+  }
+  return std::unique_ptr<Px4Process>(new Px4Process(px4_pid, supervisor, options));
 }
 
 std::optional<int> Px4Process::exited() {
   if (exit_code_) return exit_code_;
   int status = 0;
-  const pid_t r = ::waitpid(pid_, &status, WNOHANG);
-  if (r == pid_) exit_code_ = exit_code_of(status);
+  const pid_t r = ::waitpid(supervisor_, &status, WNOHANG);
+  if (r == supervisor_) exit_code_ = exit_code_of(status);
   return exit_code_;
 }
 
@@ -205,7 +269,7 @@ int Px4Process::stop(bool kill_now, double grace_s) {
   if (!exited()) {
     ::kill(-pid_, SIGKILL);
     int status = 0;
-    if (::waitpid(pid_, &status, 0) == pid_) exit_code_ = exit_code_of(status);
+    if (::waitpid(supervisor_, &status, 0) == supervisor_) exit_code_ = exit_code_of(status);
     else exit_code_ = 128 + SIGKILL;
   }
   return *exit_code_;

@@ -2,7 +2,8 @@
 // working folder as instance N with the airframe that waits for a simulator (10016 none_iris) and
 // the parameters hitl gives, its console to a file, watched while it runs and stopped at the end.
 // It never touches a process it did not start: it signals only its own child's process group.
-// The child dies with hitl even on SIGKILL (PR_SET_PDEATHSIG): no PX4 is left behind.
+// PX4 and everything it starts (its start script's shell and module clients) die with hitl even on
+// SIGKILL: a small supervisor process between them (PR_SET_PDEATHSIG) kills PX4's process group.
 #pragma once
 
 #include <sys/types.h>
@@ -87,9 +88,10 @@ class Px4Process {
   const Px4StartOptions& options() const { return options_; }
 
  private:
-  Px4Process(pid_t pid, Px4StartOptions options)
-      : pid_(pid), options_(std::move(options)), console_(options_.console_path) {}
-  pid_t pid_;
+  Px4Process(pid_t pid, pid_t supervisor, Px4StartOptions options)
+      : pid_(pid), supervisor_(supervisor), options_(std::move(options)), console_(options_.console_path) {}
+  pid_t pid_;         ///< PX4, the leader of its own process group
+  pid_t supervisor_;  ///< hitl's child that started PX4: kills PX4's group when hitl dies, exits with PX4's code
   Px4StartOptions options_;
   Px4Console console_;
   std::optional<int> exit_code_;

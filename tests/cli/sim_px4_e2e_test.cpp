@@ -159,6 +159,24 @@ TEST(SimPx4E2E, KillOfHitlLeavesNoPx4Behind) {
   EXPECT_TRUE(gone_within(s.px4_pid, 2s)) << "PX4 " << s.px4_pid << " outlived hitl's SIGKILL";
 }
 
+TEST(SimPx4E2E, KillOfHitlLeavesNothingPx4StartedBehind) {
+  // PX4 runs its start script in a shell that starts PX4's modules as client processes: killed with
+  // PX4 alone, that shell went on and started them in the next PX4 of the same instance ("Task
+  // already running", "ekf2 alloc and init failed"). Everything in PX4's process group goes.
+  const fs::path root = temp_dir();
+  const std::string dir = standin_build(root, "(trap '' TERM; echo $BASHPID > " + (root / "script").string() +
+                                                  "; exec sleep 60) &\necho $$ > " + (root / "pid").string() +
+                                                  "\nexec sleep 60\n");
+  Process sim({hitl_binary(), "sim", "--px4", dir, "--no-vio", "--clients", "0", "--px4-timeout", "60"});
+  const int px4 = read_pid(root / "pid", 10s), script = read_pid(root / "script", 10s);
+  ASSERT_GT(px4, 0) << sim.err();
+  ASSERT_GT(script, 0) << sim.err();
+  sim.signal(SIGKILL);
+  sim.wait(5s);
+  EXPECT_TRUE(gone_within(px4, 2s)) << "PX4 " << px4 << " outlived hitl's SIGKILL";
+  EXPECT_TRUE(gone_within(script, 2s)) << "PX4's start script " << script << " outlived hitl's SIGKILL";
+}
+
 TEST(SimPx4E2E, TwoSessionsAtOnceClaimDifferentInstances) {
   RunningSession a, b;
   ASSERT_GT(a.px4_pid, 0) << a.sim->err();
