@@ -24,6 +24,7 @@
 #include "engine/net/udp_endpoint.h"
 #include "engine/vehicle/telemetry_feed.h"
 #include "engine/vehicle/trajectory.h"
+#include "engine/px4/px4_build.h"
 #include "tui/terminal.h"
 
 namespace hitl::cli {
@@ -151,6 +152,7 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   hil::SessionConfig session;
   const bool px4 = !o.px4_dir.empty();
   if (px4) {  // real PX4, which hitl starts on an instance of its own (engine/hil/px4_launch.h)
+    if (auto build = px4::find_px4_build(o.px4_dir); !build) return log_error("demo", build.error().prefixed("--px4: "));
     session.px4 = hil::Px4Options{};
     session.px4->dir = o.px4_dir;
     session.vio = false;

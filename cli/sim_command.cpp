@@ -18,6 +18,7 @@
 #include "engine/faults/scenario.h"
 #include "engine/hil/session.h"
 #include "engine/hil/stack_peer.h"
+#include "engine/px4/px4_build.h"
 #include "engine/px4/px4_process.h"
 #include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
@@ -84,6 +85,7 @@ Status read_px4_options(SimOptions& opt) {
       return Error::usage("--px4-param and --px4-speed need --px4 DIR (a PX4 that hitl starts)");
     return Ok{};
   }
+  if (auto build = px4::find_px4_build(opt.px4_dir); !build) return build.error().prefixed("--px4: ");  // before anything opens
   hil::Px4Options launch;
   launch.dir = opt.px4_dir;
   launch.connect_timeout_s = opt.px4_timeout_s;

@@ -67,10 +67,13 @@ TEST(SimPx4E2E, AFolderThatIsNotAPx4BuildSaysWhatIsMissing) {
   const std::string dir = temp_dir();
   const auto r = run_hitl(sim_args(dir));
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("is not a PX4 SITL build: no bin/px4"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--px4: '" + dir + "' is not a PX4 SITL build: no bin/px4"), std::string::npos) << r.err;
   const auto missing = run_hitl(sim_args(dir + "/nowhere"));
   EXPECT_EQ(missing.exit_code, 2) << missing.err;
   EXPECT_NE(missing.err.find("no such folder"), std::string::npos) << missing.err;
+  const auto demo = run_hitl({"demo", "--px4", dir});
+  EXPECT_EQ(demo.exit_code, 2) << demo.err;
+  EXPECT_NE(demo.err.find("hitl demo: --px4: '" + dir + "' is not a PX4 SITL build"), std::string::npos) << demo.err;
 }
 
 TEST(SimPx4E2E, Px4OptionsWithoutPx4AreRefused) {

@@ -95,9 +95,9 @@ TEST_F(Px4Flight, ScenarioConditionsSeePx4sModeFromItsGcsInstance) {
 
 /// A hitl fault and PX4's own injection of the same failure (SYS_FAILURE_EN=1, `failure UNIT TYPE`).
 struct FaultPair {
-  const char* hitl_fault;  ///< --fault NAME (started at 25 s for 15 s)
-  const char* px4_off;     ///< `failure ...` at 25 s
-  const char* px4_ok;      ///< `failure ...` at 40 s
+  const char* hitl_fault;  ///< the fault, 5 s into the hover for 15 s
+  const char* px4_off;     ///< `failure ...` 5 s into the hover
+  const char* px4_ok;      ///< `failure ...` 15 s later
 };
 
 /// PX4's console warnings and errors of a flight as hitl sim showed them, without the lines of the
@@ -141,20 +141,27 @@ TEST_P(Px4FaultPair, Px4ReactsToHitlsFaultAsToItsOwnInjection) {
     a.insert(a.end(), more.begin(), more.end());
     return a;
   };
-  // hitl's fault and, beside it, PX4's own injection through the session's shell at the same times.
-  Process with_hitl(args({"--clients", "0", "--fault", std::string(p.hitl_fault) + "@25+15"}));
+  // hitl's fault 5 s into the hover (a scenario on PX4's mode, so that a slow start on a loaded
+  // machine cannot put it in the climb), and beside it PX4's own injection through the session's
+  // shell, as long after the pilot said it is in Position mode.
+  const std::string scenario = dir + "/fault.json";
+  std::ofstream(scenario) << R"({"events": [{"when": {"mode": "Position", "delay_s": 5}, "fault": ")" << p.hitl_fault
+                          << R"(", "duration_s": 15}]})";
+  Process with_hitl(args({"--clients", "0", "--scenario", scenario}));
   const std::string clients = std::to_string(free_udp_port());
   Process with_px4(args({"--clients", clients, "--px4-param", "SYS_FAILURE_EN=1"}));
   bool off_sent = false, ok_sent = false;
+  double hover_from_s = -1;
   const auto until = std::chrono::steady_clock::now() + 240s;
   while (with_px4.running() && !ok_sent && std::chrono::steady_clock::now() < until) {
     const double t = last_sim_time(with_px4.out());
+    if (hover_from_s < 0 && with_px4.err().find("trajectory: TRAJECTORY") != std::string::npos) hover_from_s = t;
     // Once each (PX4's `failure ... ok` exits non-zero even when it took: its console line says).
-    if (!off_sent && t >= 25) {
+    if (hover_from_s >= 0 && !off_sent && t >= hover_from_s + 5) {
       run_hitl({"shell", "--session-port", clients, "-c", std::string("failure ") + p.px4_off}, 30s);
       off_sent = true;
     }
-    if (off_sent && !ok_sent && t >= 40) {
+    if (off_sent && !ok_sent && t >= hover_from_s + 20) {
       run_hitl({"shell", "--session-port", clients, "-c", std::string("failure ") + p.px4_ok}, 30s);
       ok_sent = true;
     }
