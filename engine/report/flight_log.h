@@ -3,7 +3,11 @@
 //
 // Time: seconds of simulated time when the recording has the simulator's clock (the time_usec of
 // the HIL_SENSOR it sent; every record is placed on it by its tlog timestamp, interpolated between
-// two HIL_SENSOR), otherwise seconds since the first record. Positions are world NED metres.
+// two HIL_SENSOR), otherwise seconds since the first record. Positions are NED metres, every height
+// on one datum: from home, the origin PX4's local position uses, 0.00 m on the ground (docs/sim.md).
+// The simulator's truth ODOMETRY is its body origin in its world (0.22 m above the ground at rest);
+// it, and the setpoints of a pilot that flies on it (hitl sim -t), are moved down by the truth's
+// height at rest (FlightLog::truth_rest_down_m), as the session's status and JSON are.
 #pragma once
 
 #include <array>
@@ -84,6 +88,10 @@ struct FlightLog {
   Track truth;                  ///< the simulator's ground truth (ODOMETRY, estimator MOCAP, from the system that sent
                                 ///< HIL_SENSOR, or from hitl's simulator id 250 in a log without HIL_SENSOR)
   Track estimate;               ///< the vehicle's LOCAL_POSITION_NED
+  /// The truth's down at rest in the simulator's world (its first sample, before any arming):
+  /// subtracted from the truth and from the simulator's pilot's setpoints. nullopt: no truth, or
+  /// the vehicle was armed when it began (said in `missing`; those heights are left as recorded).
+  std::optional<double> truth_rest_down_m;
   AttitudeTrack truth_attitude;
   AttitudeTrack estimate_attitude;  ///< ATTITUDE
   Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err from the pilot: what the tracking RMS/max are of

@@ -95,10 +95,13 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     push(std::move(p));
   }
   {
-    Plot p{"altitude", "Altitude", time_label, "altitude above the origin (m)", {}, true, false, ""};
+    Plot p{"altitude", "Altitude", time_label, "altitude from home (m)", {}, true, false, ""};
     add_if(p, thinned("setpoint", SeriesStyle::Setpoint, log.setpoint.t_s, negated(log.setpoint.down_m), n));
     add_if(p, thinned("truth", SeriesStyle::Truth, log.truth.t_s, negated(log.truth.down_m), n));
     add_if(p, thinned("estimate", SeriesStyle::Estimate, log.estimate.t_s, negated(log.estimate.down_m), n));
+    if (log.truth_rest_down_m)
+      p.note = "every height from home, the origin of PX4's local position: 0.00 m on the ground (the truth's body origin "
+               "rests " + figure("%.2f", -*log.truth_rest_down_m) + " m above it)";
     push(std::move(p));
   }
   if (log.tracking) {
