@@ -2,7 +2,7 @@
 # Runs one libFuzzer target (default: the MAVLink frame parser) for SECONDS on a temporary copy of
 # its seed corpus (tests/fuzz/corpus/TARGET, when there is one) and prints its exec count.
 #   tests/fuzz/run.sh BUILD_DIR SECONDS [TARGET]   (BUILD_DIR configured with -DHITL_FUZZ=ON, clang)
-# TARGET: frame_parser, tlog, config, vehicle_files, scenario, board_replies, adb_framing, vio_server.
+# TARGET: frame_parser, tlog, config, vehicle_files, scenario, board_replies, adb_framing, vio_server, ulog.
 # Exits non-zero on any finding (crash, sanitizer report, trapped invariant, leak, timeout,
 # out-of-memory); the reproducer is kept in BUILD_DIR/fuzz-artifacts/.
 set -euo pipefail
