@@ -1,5 +1,4 @@
 // hitl report FILE.tlog [-o report.html]: a recording to one self-contained HTML page (docs/report.md).
-#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -33,8 +32,10 @@ Expected<report::ReportResult> write_report_and_say(const GlobalOptions& g, cons
     for (const auto& m : r->missing) std::cerr << "  " << m << '\n';
     if (r->px4) {
       const auto& m = r->px4->mean_offset_NED_m;
-      std::snprintf(line, sizeof line, "mean offset against truth north %.3f m, east %.3f m, up %.3f m, RMS %.3f m, lag %.0f ms", m[0],
-                    m[1], -m[2], r->px4->rms_m, r->px4->lag_s.value_or(NAN) * 1e3);
+      const int n = std::snprintf(line, sizeof line, "mean offset against truth north %.3f m, east %.3f m, up %.3f m, RMS %.3f m",
+                                  m[0], m[1], -m[2], r->px4->rms_m);
+      if (r->px4->lag_s && n > 0 && static_cast<std::size_t>(n) < sizeof line)
+        std::snprintf(line + n, sizeof line - static_cast<std::size_t>(n), ", lag %.0f ms", *r->px4->lag_s * 1e3);
       std::cerr << "hitl " << command << ": PX4's ULog " << r->ulog_path << (r->ulog_found ? " (found beside the recording)" : "")
                 << ": " << line << '\n';
     }

@@ -13,6 +13,7 @@ namespace {
 constexpr double kRadToDeg = 180.0 / M_PI;
 constexpr double kMaxShift_s = 0.5;
 constexpr double kShiftStep_s = 0.004;  ///< one simulator step
+constexpr double kMinHeightChange_m = 0.5;  ///< a flight that climbed less has no lag to fit
 
 /// The truth's (north, east, down) at `t_s`, linear between its samples; nullopt outside them.
 std::optional<std::array<double, 3>> truth_at(const Track& truth, double t_s) {
@@ -144,11 +145,26 @@ Expected<Px4Estimate> read_px4_estimate(const std::string& ulog_path, const Flig
   }
   // The lag: PX4's height at t against the truth's at t + shift; the best shift is minus the lag.
   std::optional<double> best_spread;
+  // Only a flight that climbed or descended has a lag to fit: at rest every shift fits alike.
+  double low_m = 0, high_m = 0;
+  for (std::size_t i = 0; i < log.truth.size(); ++i) {
+    if (i == 0 || log.truth.down_m[i] < low_m) low_m = log.truth.down_m[i];
+    if (i == 0 || log.truth.down_m[i] > high_m) high_m = log.truth.down_m[i];
+  }
+  if (high_m - low_m < kMinHeightChange_m) {
+    px4.notes.push_back("no lag fitted: the truth's height changed less than " + std::to_string(kMinHeightChange_m).substr(0, 3) +
+                        " m (nothing to fit it on)");
+    return px4;
+  }
   const int steps = static_cast<int>(std::lround(kMaxShift_s / kShiftStep_s));
   for (int k = -steps; k <= steps; ++k) {
     const double shift_s = k * kShiftStep_s;
     const auto spread = spread_at_shift(px4.position, log.truth, shift_s);
     if (spread && (!best_spread || *spread < *best_spread)) best_spread = spread, px4.lag_s = -shift_s;
+  }
+  if (px4.lag_s && std::abs(*px4.lag_s) >= kMaxShift_s - 1e-9) {
+    px4.notes.push_back("no lag fitted: none within 0.5 s fits PX4's heights to the truth's");
+    px4.lag_s.reset();
   }
   return px4;
 }

@@ -2,6 +2,7 @@
 // offset and the lag measured, the ULog found beside FILE.tlog, and the ULogs that cannot be merged.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -101,6 +102,21 @@ TEST(Px4Estimate, PlacedOnTheSimulatorsClockWithItsOffsetAndLagAgainstTruth) {
   EXPECT_EQ(series["px4-altitude"], 2u);
   EXPECT_EQ(series["px4-offset"], 3u);
   EXPECT_EQ(series["attitude-roll"], 2u) << "truth and PX4 (no ATTITUDE in this recording)";
+}
+
+TEST(Px4Estimate, AtRestThereIsNoLagToFitAndNoneIsClaimed) {
+  const std::string dir = ::testing::TempDir() + "px4_rest/";
+  std::filesystem::create_directories(dir);
+  write_tlog(dir + "rest.tlog", 1.9);  // before the climb
+  const std::string ulog = write_file(dir + "rest.ulg", px4_ulog(1.9, 0).text());
+  auto log = read_flight_log(dir + "rest.tlog");
+  ASSERT_TRUE(log);
+  auto px4 = read_px4_estimate(ulog, *log);
+  ASSERT_TRUE(px4) << px4.error().message;
+  EXPECT_FALSE(px4->lag_s);
+  EXPECT_NE(std::find(px4->notes.begin(), px4->notes.end(), "no lag fitted: the truth's height changed less than 0.5 m (nothing to fit it on)"),
+            px4->notes.end());
+  EXPECT_NEAR(px4->mean_offset_NED_m[2], -0.05, 1e-6) << "the offset still is";
 }
 
 TEST(Px4Estimate, AULogOfAnotherTimeOrALogWithoutASimulatorClockIsRefusedNamed) {
