@@ -17,8 +17,9 @@ std::string default_report_path(const std::string& tlog_path) {
 }
 
 Expected<report::ReportResult> write_report_and_say(const GlobalOptions& g, const std::string& command,
-                                                    const std::string& tlog_path, const std::string& html_path) {
-  auto r = report::write_report(tlog_path, html_path);
+                                                    const std::string& tlog_path, const std::string& html_path,
+                                                    const report::ReportOptions& report_options) {
+  auto r = report::write_report(tlog_path, html_path, report_options);
   if (!r) {
     log_error(command, (command == "report" ? "" : "--report: ") + r.error().message);
     return r.error();
@@ -29,6 +30,15 @@ Expected<report::ReportResult> write_report_and_say(const GlobalOptions& g, cons
                   r->plots, static_cast<double>(r->bytes) / 1024.0, r->seconds, r->missing.empty() ? "" : "; the log lacks:");
     std::cerr << line << '\n';
     for (const auto& m : r->missing) std::cerr << "  " << m << '\n';
+    if (r->px4) {
+      const auto& m = r->px4->mean_offset_NED_m;
+      const int n = std::snprintf(line, sizeof line, "mean offset against truth north %.3f m, east %.3f m, up %.3f m, RMS %.3f m",
+                                  m[0], m[1], -m[2], r->px4->rms_m);
+      if (r->px4->lag_s && n > 0 && static_cast<std::size_t>(n) < sizeof line)
+        std::snprintf(line + n, sizeof line - static_cast<std::size_t>(n), ", lag %.0f ms", *r->px4->lag_s * 1e3);
+      std::cerr << "hitl " << command << ": PX4's ULog " << r->ulog_path << (r->ulog_found ? " (found beside the recording)" : "")
+                << ": " << line << '\n';
+    }
     if (!r->skipped.empty()) std::cerr << "hitl " << command << ": not drawn from the damaged log:\n";
     for (const auto& m : r->skipped) std::cerr << "  " << m << '\n';
   }
@@ -36,13 +46,26 @@ Expected<report::ReportResult> write_report_and_say(const GlobalOptions& g, cons
 }
 
 nlohmann::json report_json(const report::ReportResult& r) {
-  return {{"path", r.html_path}, {"bytes", r.bytes}, {"plots", r.plots}, {"seconds", r.seconds}, {"lacks", r.missing}, {"skipped", r.skipped}};
+  nlohmann::json ulog = nullptr;
+  if (r.px4) {
+    const auto& m = r.px4->mean_offset_NED_m;
+    ulog = {{"path", r.ulog_path},
+            {"found", r.ulog_found},
+            {"version", r.px4->version},
+            {"positions", r.px4->position.size()},
+            {"offset_m", {{"north", m[0]}, {"east", m[1]}, {"up", -m[2]}, {"rms", r.px4->rms_m}}},
+            {"lag_ms", r.px4->lag_s ? nlohmann::json(*r.px4->lag_s * 1e3) : nlohmann::json(nullptr)}};
+  }
+  return {{"path", r.html_path}, {"bytes", r.bytes}, {"plots", r.plots}, {"seconds", r.seconds},
+          {"lacks", r.missing}, {"skipped", r.skipped}, {"ulog", ulog}};
 }
 
 void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   struct ReportOptions {
     std::string tlog;
     std::string output;
+    std::string ulog;
+    bool no_ulog = false;
   };
   auto o = std::make_shared<ReportOptions>();
   auto* sub = app.add_subcommand(
@@ -51,11 +74,17 @@ void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   sub->add_option("FILE", o->tlog, "The recording: hitl sim/demo --record, hitl inspect --record, QGroundControl, MAVProxy")
       ->required()->check(CLI::ExistingFile)->type_name("FILE.tlog");
   sub->add_option("-o,--output", o->output, "The page to write (default: FILE with .html for .tlog)")->type_name("FILE.html");
-  sub->footer("Prints the page's path on stdout (--json: a summary line with path, bytes, plots, seconds, lacks). Needs gnuplot (Debian: gnuplot-nox).\n"
-              "Exit: 0 written, 2 bad input (not a tlog) or gnuplot missing, 1 drawing or writing failed.");
+  auto* ulog = sub->add_option("--ulog", o->ulog,
+                               "PX4's ULog to merge: its estimate against the truth on the simulator's clock (default: the newest "
+                               "FILE.px4/log/**.ulg that hitl sim --px4 left beside the recording)")
+                   ->check(CLI::ExistingFile)
+                   ->type_name("PX4.ulg");
+  sub->add_flag("--no-ulog", o->no_ulog, "Merge no ULog, even one beside the recording")->excludes(ulog);
+  sub->footer("Prints the page's path on stdout (--json: a summary line with path, bytes, plots, seconds, lacks, skipped, ulog). Needs gnuplot (Debian: gnuplot-nox).\n"
+              "Exit: 0 written, 2 bad input (not a tlog, a --ulog that is no ULog or not of this recording) or gnuplot missing, 1 drawing or writing failed.");
   sub->callback([&options, &state, o]() {
     const std::string out = o->output.empty() ? default_report_path(o->tlog) : o->output;
-    auto r = write_report_and_say(options, "report", o->tlog, out);
+    auto r = write_report_and_say(options, "report", o->tlog, out, {o->ulog, !o->no_ulog});
     if (!r) {
       state.exit_code = exit_code(r.error());
       return;

@@ -192,6 +192,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     a.wall_us.push_back(wall_us);
   };
   double tracking_sum_sq = 0;
+  bool armed_seen = false;                      // a vehicle said armed: the truth is no longer at rest
+  std::vector<std::size_t> setpoints_on_truth;  // log.setpoint's points from the simulator's pilot (hitl sim -t)
   mavlink::TimedRecord timed;
   const mavlink::TlogRecord& r = timed.record;
   std::optional<uint64_t> first_wall_us, last_wall_us;
@@ -229,6 +231,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           const auto o = f.as<msg::Odometry>();
           if (from_sim && f.compid == kVioComponentId) arrive(vio, t_s, wall_us);
           if (from_sim && o.estimator_type == static_cast<uint8_t>(mavlink::MavEstimatorType::Mocap)) {
+            if (!log.truth_rest_down_m && !armed_seen && log.truth.size() == 0) log.truth_rest_down_m = o.z;
             add_point(log.truth, t_s, o.x, o.y, o.z);
             const Eigen::Quaterniond q(o.q[0], o.q[1], o.q[2], o.q[3]);
             const auto e = frames::euler_from(q);
@@ -238,6 +241,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
         }
         case msg::PositionTargetLocalNed::kId: {
           const auto sp = f.as<msg::PositionTargetLocalNed>();
+          if (from_pilot && from_sim) setpoints_on_truth.push_back(log.setpoint.size());
           add_point(from_pilot ? log.setpoint : vehicle_setpoint, t_s, sp.x, sp.y, sp.z);
           break;
         }
@@ -297,6 +301,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           if (from_sim || hb.autopilot == kMavAutopilotInvalid || hb.type == kMavTypeGcs) break;
           auto& v = vehicles[f.sysid];
           const bool armed = (hb.base_mode & mavlink::mode_flag::kSafetyArmed) != 0;
+          armed_seen = armed_seen || armed;
           const auto mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
           if (v.armed != armed) event(t_s, Severity::Info, source_name(f, sim_id), armed ? "armed" : "disarmed");
           if (v.mode != mode) event(t_s, Severity::Info, source_name(f, sim_id), "mode " + mode);
@@ -325,6 +330,12 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   log.start_s = *first_t_s;
   log.duration_s = *last_t_s - *first_t_s;
   log.wall_duration_s = std::max(0.0, static_cast<double>(*last_wall_us) - static_cast<double>(*first_wall_us)) * 1e-6;
+  // One height datum, home (docs/sim.md): the truth and the setpoints flown on it, down by the
+  // truth's height at rest; the vehicle's own frames are from home already.
+  if (log.truth_rest_down_m) {
+    for (double& d : log.truth.down_m) d -= *log.truth_rest_down_m;
+    for (std::size_t i : setpoints_on_truth) log.setpoint.down_m[i] -= *log.truth_rest_down_m;
+  }
   if (log.setpoint.size() == 0) log.setpoint = std::move(vehicle_setpoint);
   if (log.tracking_error_m.size() > 0) {
     TrackingSummary s;
@@ -342,6 +353,9 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   };
   lacks(!log.simulated_time, "the simulator's clock (HIL_SENSOR from a simulator): times are seconds since the first record");
   lacks(log.truth.size() == 0, "ground truth (ODOMETRY with estimator MOCAP from the simulator; hitl sim --record writes it)");
+  lacks(log.truth.size() > 0 && !log.truth_rest_down_m,
+        "the truth at rest (the vehicle was armed when the truth began): the truth's heights are its body origin's in "
+        "the simulator's world, not from home");
   lacks(log.setpoint.size() == 0, "setpoints (POSITION_TARGET_LOCAL_NED; hitl sim -t --record and hitl fly trajectory --report write the pilot's)");
   lacks(log.tracking_error_m.size() == 0, "the tracking error (NAMED_VALUE_FLOAT trk_err; hitl sim -t --record and hitl fly trajectory --report write it)");
   lacks(log.estimate.size() == 0, "the vehicle's position estimate (LOCAL_POSITION_NED)");

@@ -3,7 +3,11 @@
 //
 // Time: seconds of simulated time when the recording has the simulator's clock (the time_usec of
 // the HIL_SENSOR it sent; every record is placed on it by its tlog timestamp, interpolated between
-// two HIL_SENSOR), otherwise seconds since the first record. Positions are world NED metres.
+// two HIL_SENSOR), otherwise seconds since the first record. Positions are NED metres, every height
+// on one datum: from home, the origin PX4's local position uses, 0.00 m on the ground (docs/sim.md).
+// The simulator's truth ODOMETRY is its body origin in its world (0.22 m above the ground at rest);
+// it, and the setpoints of a pilot that flies on it (hitl sim -t), are moved down by the truth's
+// height at rest (FlightLog::truth_rest_down_m), as the session's status and JSON are.
 #pragma once
 
 #include <array>
@@ -67,6 +71,24 @@ struct LoopLatencySeries {
   bool reported = false;  ///< the status carried sim_lat99 at all (-1 included)
 };
 
+/// PX4's own estimate from its ULog (hitl report --ulog; px4_estimate.h), on the report's time axis:
+/// in lockstep PX4 SITL sets its clock to each HIL_SENSOR's time_usec, so a ULog timestamp of T us
+/// is the simulator's T * 1e-6 s. NED metres from PX4's local origin (home, 0 m on the ground).
+struct Px4Estimate {
+  std::string path;              ///< the ULog read
+  std::string version;           ///< PX4's "v1.16.0" (ver_sw_release), "" when the log has none
+  Track position;                ///< vehicle_local_position x, y, z while xy_valid and z_valid
+  AttitudeTrack attitude;        ///< vehicle_attitude q
+  Track minus_truth;             ///< position minus the truth (interpolated at each time), where both are
+  std::array<double, 3> mean_offset_NED_m{};  ///< the mean of minus_truth
+  double rms_m = 0;              ///< of minus_truth's length
+  /// How much later PX4's heights follow the truth's, fitted (the delay d, within +-0.5 s in 4 ms
+  /// steps, that makes PX4's height at t + d agree best with the truth's at t, a constant offset
+  /// aside): its estimator's lag on one clock, near 0 when the clocks are one.
+  std::optional<double> lag_s;
+  std::vector<std::string> notes;  ///< the reader's notes and what was not drawn, in words
+};
+
 struct FlightLog {
   std::string path;
   uint64_t records = 0;         ///< tlog records read
@@ -84,6 +106,10 @@ struct FlightLog {
   Track truth;                  ///< the simulator's ground truth (ODOMETRY, estimator MOCAP, from the system that sent
                                 ///< HIL_SENSOR, or from hitl's simulator id 250 in a log without HIL_SENSOR)
   Track estimate;               ///< the vehicle's LOCAL_POSITION_NED
+  /// The truth's down at rest in the simulator's world (its first sample, before any arming):
+  /// subtracted from the truth and from the simulator's pilot's setpoints. nullopt: no truth, or
+  /// the vehicle was armed when it began (said in `missing`; those heights are left as recorded).
+  std::optional<double> truth_rest_down_m;
   AttitudeTrack truth_attitude;
   AttitudeTrack estimate_attitude;  ///< ATTITUDE
   Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err from the pilot: what the tracking RMS/max are of
@@ -97,6 +123,7 @@ struct FlightLog {
   LoopLatencySeries loop_latency;
   std::vector<std::string> missing;       ///< what a report cannot draw from this log, in words
   std::vector<std::string> skipped;       ///< what a damaged log holds that is not drawn, in words
+  std::optional<Px4Estimate> px4;         ///< PX4's ULog when the report was given one (px4_estimate.h)
 };
 
 inline constexpr std::array<const char*, 6> kEkfRatioNames = {"velocity", "horizontal position", "vertical position",

@@ -66,6 +66,15 @@ std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, co
                               ", " + std::to_string(p.count) + " messages");
   if (log.late_ticks) row("late ticks", std::to_string(*log.late_ticks));
   if (log.lockstep) row("lockstep", *log.lockstep ? "yes" : "no");
+  if (log.px4) {
+    const auto& m = log.px4->mean_offset_NED_m;
+    row("PX4's ULog", log.px4->path + (log.px4->version.empty() ? "" : " (PX4 " + log.px4->version + ")") + ": " +
+                          std::to_string(log.px4->position.size()) + " positions; against truth: mean offset north " +
+                          fixed(m[0], 3) + " m, east " + fixed(m[1], 3) + " m, up " + fixed(-m[2], 3) + " m, RMS " +
+                          fixed(log.px4->rms_m, 3) + " m" +
+                          (log.px4->lag_s ? ", lag " + fixed(*log.px4->lag_s * 1e3, 0) + " ms (fitted)" : ""));
+    for (const auto& note : log.px4->notes) row("PX4's ULog", note);
+  }
   row("events", std::to_string(log.events.size()));
   if (log.skipped_bytes > 0 || log.parse_errors > 0)
     row("damage", std::to_string(log.skipped_bytes) + " bytes skipped, " + std::to_string(log.parse_errors) + " frames rejected");

@@ -95,11 +95,32 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     push(std::move(p));
   }
   {
-    Plot p{"altitude", "Altitude", time_label, "altitude above the origin (m)", {}, true, false, ""};
+    Plot p{"altitude", "Altitude", time_label, "altitude from home (m)", {}, true, false, ""};
     add_if(p, thinned("setpoint", SeriesStyle::Setpoint, log.setpoint.t_s, negated(log.setpoint.down_m), n));
     add_if(p, thinned("truth", SeriesStyle::Truth, log.truth.t_s, negated(log.truth.down_m), n));
     add_if(p, thinned("estimate", SeriesStyle::Estimate, log.estimate.t_s, negated(log.estimate.down_m), n));
+    if (log.truth_rest_down_m)
+      p.note = "every height from home, the origin of PX4's local position: 0.00 m on the ground (the truth's body origin "
+               "rests " + figure("%.2f", -*log.truth_rest_down_m) + " m above it)";
     push(std::move(p));
+  }
+  if (log.px4) {
+    const Px4Estimate& px4 = *log.px4;
+    Plot a{"px4-altitude", "PX4's estimate (ULog) against truth: altitude", time_label, "altitude from home (m)", {}, true, false, ""};
+    add_if(a, thinned("truth", SeriesStyle::Truth, log.truth.t_s, negated(log.truth.down_m), n));
+    add_if(a, thinned("PX4 (ULog)", SeriesStyle::Estimate, px4.position.t_s, negated(px4.position.down_m), n));
+    a.note = "PX4's vehicle_local_position from " + px4.path + " on the simulator's clock (in lockstep PX4's is the same)";
+    if (px4.lag_s) a.note += "; PX4's heights follow the truth's " + figure("%.0f", *px4.lag_s * 1e3) + " ms later (fitted)";
+    push(std::move(a));
+    Plot o{"px4-offset", "PX4's estimate (ULog) minus truth", time_label, "estimate minus truth (m)", {}, true, false, ""};
+    add_if(o, thinned("north", SeriesStyle::Plain, px4.minus_truth.t_s, px4.minus_truth.north_m, n));
+    add_if(o, thinned("east", SeriesStyle::Plain, px4.minus_truth.t_s, px4.minus_truth.east_m, n));
+    add_if(o, thinned("up", SeriesStyle::Plain, px4.minus_truth.t_s, negated(px4.minus_truth.down_m), n));
+    const auto& m = px4.mean_offset_NED_m;
+    o.note = "mean offset north " + figure("%.3f", m[0]) + " m, east " + figure("%.3f", m[1]) + " m, up " + figure("%.3f", -m[2]) +
+             " m; RMS " + figure("%.3f", px4.rms_m) + " m over " + std::to_string(px4.minus_truth.size()) +
+             " samples (the truth interpolated at each of PX4's times)";
+    push(std::move(o));
   }
   if (log.tracking) {
     Plot p{"tracking-error", "Tracking error", time_label, "position error (m)", {}, true, false, ""};
@@ -114,6 +135,7 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     Plot p{std::string("attitude-") + name, std::string("Attitude: ") + name, time_label, std::string(name) + " (deg)", {}, true, false, ""};
     add_if(p, thinned("truth", SeriesStyle::Truth, log.truth_attitude.t_s, log.truth_attitude.*member, n));
     add_if(p, thinned("estimate", SeriesStyle::Estimate, log.estimate_attitude.t_s, log.estimate_attitude.*member, n));
+    if (log.px4) add_if(p, thinned("PX4 (ULog)", SeriesStyle::Plain, log.px4->attitude.t_s, log.px4->attitude.*member, n));
     push(std::move(p));
   }
   {

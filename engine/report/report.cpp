@@ -8,13 +8,23 @@
 #include "engine/report/gnuplot.h"
 #include "engine/report/html.h"
 #include "engine/report/plots.h"
+#include "engine/report/px4_estimate.h"
 
 namespace hitl::report {
 
-Expected<ReportResult> write_report(const std::string& tlog_path, const std::string& html_path) {
+Expected<ReportResult> write_report(const std::string& tlog_path, const std::string& html_path, const ReportOptions& options) {
   const double start_s = monotonic_s();
   auto log = read_flight_log(tlog_path);
   if (!log) return log.error();
+  std::string ulog_path = options.ulog_path;
+  const bool found = ulog_path.empty() && options.find_ulog;
+  if (found) ulog_path = find_px4_ulog(tlog_path).value_or("");
+  if (!ulog_path.empty()) {
+    auto px4 = read_px4_estimate(ulog_path, *log);
+    if (px4) log->px4 = std::move(*px4);
+    else if (!found) return px4.error();
+    else log->missing.push_back("PX4's ULog found beside the recording (" + px4.error().message + ")");
+  }
   const auto all_plots = plots_of(*log);
   std::vector<std::string> failed;
   auto all_svgs = render_svgs(all_plots, event_markers(*log), {}, &failed);
@@ -30,7 +40,9 @@ Expected<ReportResult> write_report(const std::string& tlog_path, const std::str
   if (!out) return Error::input("cannot write the report '" + html_path + "': " + std::strerror(errno));
   out << html;
   if (!out.flush()) return Error::failed("writing the report '" + html_path + "' failed: " + std::strerror(errno));
-  return ReportResult{html_path, html.size(), plots.size(), monotonic_s() - start_s, log->missing, log->skipped};
+  ReportResult r{html_path, html.size(), plots.size(), monotonic_s() - start_s, log->missing, log->skipped, "", false, std::nullopt};
+  if (log->px4) r.ulog_path = log->px4->path, r.ulog_found = found, r.px4 = log->px4;
+  return r;
 }
 
 }  // namespace hitl::report

@@ -2,12 +2,20 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "base/common/expected.h"
+#include "engine/report/flight_log.h"
 
 namespace hitl::report {
+
+/// Which ULog of PX4 to merge (docs/report.md "PX4's ULog beside the truth").
+struct ReportOptions {
+  std::string ulog_path;   ///< --ulog: this one ("" : look beside the recording when find_ulog)
+  bool find_ulog = true;   ///< the newest FILE.px4/log/**.ulg beside FILE.tlog, when there is one
+};
 
 struct ReportResult {
   std::string html_path;
@@ -16,9 +24,14 @@ struct ReportResult {
   double seconds = 0;                  ///< wall time to read, draw and write
   std::vector<std::string> missing;    ///< what the log lacks (FlightLog::missing)
   std::vector<std::string> skipped;    ///< what a damaged log had that is not drawn (FlightLog::skipped, plots gnuplot could not draw)
+  std::string ulog_path;               ///< PX4's ULog merged ("" : none)
+  bool ulog_found = false;             ///< it was found beside the recording, not given
+  std::optional<Px4Estimate> px4;      ///< what it gave (the offset against truth)
 };
 
-/// Reads `tlog_path`, draws it and writes the page to `html_path`.
-Expected<ReportResult> write_report(const std::string& tlog_path, const std::string& html_path);
+/// Reads `tlog_path` (and PX4's ULog as `options` say), draws it and writes the page to `html_path`.
+/// A ULog given that cannot be merged is an Error; one found beside the recording that cannot be is
+/// said in `missing` and left out.
+Expected<ReportResult> write_report(const std::string& tlog_path, const std::string& html_path, const ReportOptions& options = {});
 
 }  // namespace hitl::report

@@ -20,10 +20,13 @@
 #include "base/mavlink/messages.h"
 #include "base/mavlink/text_field.h"
 #include "engine/mavlink/tlog.h"
+#include "engine/report/flight_log.h"
+#include "engine/report/plots.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/lockstep_session.h"
 #include "tests/support/process.h"
 #include "tests/support/tools.h"
+#include "tests/support/ulog_writer.h"
 
 namespace hitl {
 namespace {
@@ -274,6 +277,82 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
   EXPECT_EQ(page.find("What this log lacks</h2>\n<ul class=\"lacks\" id=\"lacks\">\n<li>ground truth"), std::string::npos);
 }
 
+/// The altitude plot's series `title` as drawn: time -> height.
+std::vector<std::pair<double, double>> altitude_series(const std::vector<report::Plot>& plots, const std::string& title) {
+  std::vector<std::pair<double, double>> out;
+  for (const auto& p : plots)
+    if (p.id == "altitude")
+      for (const auto& s : p.series)
+        if (s.title == title)
+          for (std::size_t i = 0; i < s.x.size(); ++i) out.emplace_back(s.x[i], s.y[i]);
+  return out;
+}
+
+double nearest(const std::vector<std::pair<double, double>>& series, double t_s) {
+  auto it = std::lower_bound(series.begin(), series.end(), std::pair{t_s, -1e300});
+  if (it == series.end()) return series.back().second;
+  if (it != series.begin() && t_s - (it - 1)->first < it->first - t_s) --it;
+  return it->second;
+}
+
+TEST(ReportE2E, AHoverAt2_5mPlotsTruthSetpointAndEstimateWithinCentimetres) {
+  // hitl sim -t a 2.5 m hover --record against hitl target: every height on one datum (from home,
+  // 0.00 m on the ground: docs/sim.md), so the plot shows no error the flight did not have.
+  const std::string dir = test::temp_dir();
+  const std::string trajectory = dir + "/hover.json", tlog = dir + "/hover.tlog";
+  std::ofstream(trajectory) << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0},
+                                                 {"t": 10, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t", trajectory,
+                     "--record", tlog});
+  EXPECT_EQ(sim.wait(150s), 0) << sim.err();
+  board.signal(SIGINT);
+  board.wait(20s);
+  auto log = report::read_flight_log(tlog);
+  ASSERT_TRUE(log) << log.error().message;
+  const auto plots = report::plots_of(*log);
+  const auto setpoint = altitude_series(plots, "setpoint"), truth = altitude_series(plots, "truth"),
+             estimate = altitude_series(plots, "estimate");
+  ASSERT_FALSE(setpoint.empty());
+  ASSERT_FALSE(truth.empty());
+  ASSERT_FALSE(estimate.empty());
+  // At rest before the climb: the truth 0.00 m, the emulated estimate noisy (its barometer) about 0.
+  auto mean_before = [](const std::vector<std::pair<double, double>>& s, double t_s) {
+    double sum = 0;
+    std::size_t n = 0;
+    for (const auto& [t, v] : s)
+      if (t < t_s) sum += v, ++n;
+    return n > 0 ? sum / static_cast<double>(n) : NAN;
+  };
+  const double climb_s = setpoint.front().first - 3;  // the pilot takes off before its first setpoint
+  EXPECT_NEAR(truth.front().second, 0.0, 0.01) << "at rest, on the ground";
+  EXPECT_NEAR(mean_before(estimate, climb_s), 0.0, 0.05) << "at rest, on the ground";
+  // The hover: from 3 s after the trajectory started (the climb settled) to its last setpoint. The
+  // setpoints are 2.5 m; the truth and the estimate agree with them on average within centimetres
+  // (the emulated estimator's noise is a few centimetres either way).
+  std::size_t compared = 0;
+  double setpoint_sum_m = 0, truth_sum_m = 0, estimate_sum_m = 0;
+  for (const auto& [t_s, sp_m] : setpoint) {
+    if (t_s < setpoint.front().first + 3) continue;
+    setpoint_sum_m += sp_m;
+    truth_sum_m += nearest(truth, t_s);
+    estimate_sum_m += nearest(estimate, t_s);
+    ++compared;
+  }
+  ASSERT_GT(compared, 100u);
+  const double n = static_cast<double>(compared);
+  EXPECT_NEAR(setpoint_sum_m / n, 2.5, 0.01);
+  EXPECT_NEAR(truth_sum_m / n, 2.5, 0.03) << "the truth in the hover, from home";
+  EXPECT_NEAR(estimate_sum_m / n, 2.5, 0.05) << "the estimate in the hover, from home";
+  std::cout << "hover at 2.5 m: setpoint " << setpoint_sum_m / n << " m, truth " << truth_sum_m / n << " m, estimate "
+            << estimate_sum_m / n << " m (mean of " << compared << " setpoints); at rest: truth " << truth.front().second
+            << " m, estimate " << mean_before(estimate, climb_s) << " m\n";
+}
+
 TEST(ReportE2E, FlyTrajectoryReportThroughASessionIsScoredOnTheEstimate) {
   // hitl fly trajectory --report, through a session: the link's frames (the board's telemetry, the
   // session's truth) and the pilot's setpoints and errors, against the board's estimate.
@@ -343,6 +422,69 @@ TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
   EXPECT_EQ(s["type"], "summary");
   EXPECT_EQ(s["path"], dir + "/again.html");
   EXPECT_GT(s["lacks"].size(), 3u);
+}
+
+TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed) {
+  // A hitl sim recording (against hitl target), and ULogs written here on its simulator's clock.
+  const std::string dir = test::temp_dir();
+  const std::string trajectory = dir + "/hover.json", tlog = dir + "/s.tlog";
+  std::ofstream(trajectory) << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0},
+                                                 {"t": 4, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
+  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t", trajectory,
+                     "--record", tlog});
+  ASSERT_EQ(sim.wait(150s), 0) << sim.err();
+  board.signal(SIGINT);
+  board.wait(20s);
+  // PX4's estimate at 2.5 m from 1 s to 5 s of the simulator's clock, 50 Hz.
+  test::ULogWriter w;
+  w.format("vehicle_local_position:uint64_t timestamp;float x;float y;float z;bool xy_valid;bool z_valid;");
+  w.subscribe(0, "vehicle_local_position");
+  for (uint64_t t_us = 1'000'000; t_us <= 5'000'000; t_us += 20'000)
+    w.data(0, test::ULogWriter::raw(t_us) + test::ULogWriter::raw(0.0F) + test::ULogWriter::raw(0.0F) +
+                  test::ULogWriter::raw(-2.5F) + std::string("\1\1", 2));
+  std::ofstream(dir + "/px4.ulg", std::ios::binary) << w.text();
+
+  auto given = test::run_hitl({"--json", "report", tlog, "--ulog", dir + "/px4.ulg", "-o", dir + "/given.html"});
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  auto j = test::last_json_line(given.out);
+  EXPECT_EQ(j["ulog"]["path"], dir + "/px4.ulg");
+  EXPECT_EQ(j["ulog"]["found"], false);
+  EXPECT_EQ(j["ulog"]["positions"], 201);
+  const std::string page = read_file(dir + "/given.html");
+  for (const char* id : {"px4-altitude", "px4-offset"})
+    EXPECT_NE(page.find(std::string("<figure id=\"plot-") + id + "\""), std::string::npos) << id;
+
+  // Not given: the newest FILE.px4/log/**.ulg beside FILE.tlog, said on stderr.
+  std::filesystem::create_directories(dir + "/s.px4/log/2026-11-29");
+  std::filesystem::copy_file(dir + "/px4.ulg", dir + "/s.px4/log/2026-11-29/09_00_00.ulg");
+  auto found = test::run_hitl({"report", tlog, "-o", dir + "/found.html"});
+  ASSERT_EQ(found.exit_code, 0) << found.err;
+  EXPECT_NE(found.err.find("hitl report: PX4's ULog " + dir + "/s.px4/log/2026-11-29/09_00_00.ulg (found beside the recording): "
+                           "mean offset against truth"),
+            std::string::npos)
+      << found.err;
+  auto refused = test::run_hitl({"--json", "report", tlog, "--no-ulog", "-o", dir + "/none.html"});
+  ASSERT_EQ(refused.exit_code, 0) << refused.err;
+  EXPECT_TRUE(test::last_json_line(refused.out)["ulog"].is_null());
+
+  // A bad ULog given is bad input, named; a bad one found beside is said and left out.
+  std::ofstream(dir + "/junk.ulg") << "not a ULog\n";
+  auto junk = test::run_hitl({"report", tlog, "--ulog", dir + "/junk.ulg", "-o", dir + "/junk.html"});
+  EXPECT_EQ(junk.exit_code, 2) << junk.err;
+  EXPECT_NE(junk.err.find("hitl report: '" + dir + "/junk.ulg' is not a ULog"), std::string::npos) << junk.err;
+  std::filesystem::copy_file(dir + "/junk.ulg", dir + "/s.px4/log/2026-11-29/09_30_00.ulg");
+  auto beside = test::run_hitl({"--json", "report", tlog, "-o", dir + "/beside.html"});
+  ASSERT_EQ(beside.exit_code, 0) << beside.err;
+  j = test::last_json_line(beside.out);
+  EXPECT_TRUE(j["ulog"].is_null());
+  EXPECT_NE(j["lacks"].dump().find("PX4's ULog found beside the recording ('" + dir + "/s.px4/log/2026-11-29/09_30_00.ulg' is not a ULog"),
+            std::string::npos)
+      << j.dump();
 }
 
 TEST(ReportE2E, NotATlogIsBadInputNamed) {

@@ -15,6 +15,8 @@
 #include <string>
 #include <thread>
 
+#include "engine/report/flight_log.h"
+#include "engine/report/px4_estimate.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"
 
@@ -236,6 +238,48 @@ TEST_F(Px4Flight, KillOfHitlLeavesNoPx4) {
   auto alive = [px4] { return process_running(px4); };
   while (alive() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(50ms);
   EXPECT_FALSE(alive()) << "PX4 " << px4 << " outlived hitl's SIGKILL";
+}
+
+TEST_F(Px4Flight, HoverReportMergesPx4sOwnULogAgainstTheTruth) {
+  // hitl sim --px4 --record FILE.tlog: PX4 runs in FILE.px4/ and its ULog lands in FILE.px4/log/;
+  // hitl report finds it alone and draws PX4's estimate against the truth on one clock.
+  const std::string dir = temp_dir(), hover = dir + "/hover.json", tlog = dir + "/h.tlog";
+  std::ofstream(hover) << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0},
+                                            {"t": 10, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
+  const auto flight = run_hitl({"--json", "sim", "--px4", px4_dir_, "--no-vio", "--clients", "0", "-t", hover, "--px4-speed", "10",
+                                "--record", tlog},
+                               300s);
+  ASSERT_EQ(flight.exit_code, 0) << flight.err;
+  const auto report = run_hitl({"--json", "report", tlog}, 120s);
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  const auto j = last_json_line(report.out);
+  ASSERT_TRUE(j["ulog"].is_object()) << j.dump();
+  EXPECT_EQ(j["ulog"]["found"], true);
+  EXPECT_EQ(j["ulog"]["path"].get<std::string>().rfind(dir + "/h.px4/log/", 0), 0u) << j.dump();
+  EXPECT_GT(j["ulog"]["positions"].get<int>(), 100);
+  ASSERT_TRUE(j["ulog"]["lag_ms"].is_number()) << j.dump();
+  EXPECT_LT(std::abs(j["ulog"]["lag_ms"].get<double>()), 100.0) << "one clock: PX4's estimate follows within a sample";
+  // The hover alone: the last 5 s of the trajectory (the pilot's setpoints), PX4's estimate minus truth.
+  auto log = report::read_flight_log(tlog);
+  ASSERT_TRUE(log) << log.error().message;
+  auto px4 = report::read_px4_estimate(j["ulog"]["path"], *log);
+  ASSERT_TRUE(px4) << px4.error().message;
+  ASSERT_GT(log->setpoint.size(), 0u);
+  const double end_s = log->setpoint.t_s.back(), start_s = end_s - 5;
+  double sum[3] = {0, 0, 0};
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < px4->minus_truth.size(); ++i) {
+    if (px4->minus_truth.t_s[i] < start_s || px4->minus_truth.t_s[i] > end_s) continue;
+    sum[0] += px4->minus_truth.north_m[i], sum[1] += px4->minus_truth.east_m[i], sum[2] += px4->minus_truth.down_m[i];
+    ++n;
+  }
+  ASSERT_GT(n, 10u);
+  const double north = sum[0] / n, east = sum[1] / n, up = -sum[2] / n;
+  EXPECT_LT(std::abs(up), 0.3) << "PX4's height in the hover, from home as the truth's";
+  EXPECT_LT(std::hypot(north, east), 1.0);
+  std::printf("[ figures  ] PX4's estimate minus truth in the 2.5 m hover (%zu samples, %.1f-%.1f s): north %.3f m, east %.3f m, "
+              "up %.3f m; whole flight RMS %.3f m, lag %.0f ms\n",
+              n, start_s, end_s, north, east, up, j["ulog"]["offset_m"]["rms"].get<double>(), j["ulog"]["lag_ms"].get<double>());
 }
 
 }  // namespace

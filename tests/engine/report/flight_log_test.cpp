@@ -261,6 +261,102 @@ TEST(FlightLog, ASessionWithoutLoopLatencySaysWhy) {
   EXPECT_TRUE(lacks_starting(*log, "the loop latency (no HIL_SENSOR was answered"));
 }
 
+/// The altitude plot's series `title`, as drawn, at the point nearest `t_s`.
+double altitude_at(const std::vector<Plot>& plots, const std::string& title, double t_s) {
+  const auto it = std::find_if(plots.begin(), plots.end(), [](const Plot& p) { return p.id == "altitude"; });
+  if (it == plots.end()) return NAN;
+  for (const auto& s : it->series) {
+    if (s.title != title || s.x.empty()) continue;
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < s.x.size(); ++i)
+      if (std::abs(s.x[i] - t_s) < std::abs(s.x[best] - t_s)) best = i;
+    return s.y[best];
+  }
+  return NAN;
+}
+
+/// A hitl sim -t recording of a hover at 2.5 m as the session writes it: the truth ODOMETRY is the
+/// body origin (the centre of gravity, 0.22 m above the ground at rest), the pilot's setpoints are in
+/// the truth's frame (the pose it flies on), the vehicle's LOCAL_POSITION_NED is from home (0 on the
+/// ground). Disarmed 0-2 s, a climb 2-4 s, the hover 4-10 s; 50 Hz.
+void write_hover(const std::string& path, uint8_t pilot_sysid, bool setpoints_in_truth_frame, double rest_cg_m = 0.22) {
+  LogWriter w(path);
+  constexpr double kHover_m = 2.5;
+  for (uint64_t k = 0; k <= 500; ++k) {
+    const uint64_t t_us = k * 20'000;
+    const double t_s = static_cast<double>(t_us) * 1e-6;
+    const double h_m = t_s < 2 ? 0.0 : t_s < 4 ? kHover_m * (t_s - 2) / 2 : kHover_m;  // from home
+    w.add(t_us, kSimulatorSystemId, 1, sensor_at(t_us));
+    if (k % 50 == 0) w.add(t_us, 1, 1, heartbeat(t_s >= 2));
+    msg::Odometry truth;
+    truth.time_usec = t_us;
+    truth.z = static_cast<float>(-(rest_cg_m + h_m));
+    truth.q = {1, 0, 0, 0};
+    truth.estimator_type = static_cast<uint8_t>(mavlink::MavEstimatorType::Mocap);
+    w.add(t_us, kSimulatorSystemId, 1, truth);
+    msg::LocalPositionNed estimate;
+    estimate.z = static_cast<float>(-h_m);
+    w.add(t_us, 1, 1, estimate);
+    if (t_s >= 4) {
+      msg::PositionTargetLocalNed sp;
+      sp.z = static_cast<float>(-(kHover_m + (setpoints_in_truth_frame ? rest_cg_m : 0.0)));
+      w.add(t_us, pilot_sysid, mavlink::kCompIdPathPlanner, sp);
+    }
+  }
+  w.close();
+}
+
+TEST(FlightLog, AHoverAt2_5mPlotsTruthSetpointAndEstimateFromHomeWithinCentimetres) {
+  // hitl sim -t: the pilot is the simulator's and flies on the truth.
+  const std::string path = ::testing::TempDir() + "hover.tlog";
+  write_hover(path, kSimulatorSystemId, true);
+  auto log = read_flight_log(path);
+  ASSERT_TRUE(log) << log.error().message;
+  const auto plots = plots_of(*log);
+  for (double t_s : {5.0, 7.5, 10.0}) {
+    EXPECT_NEAR(altitude_at(plots, "truth", t_s), 2.5, 0.03) << "t=" << t_s;
+    EXPECT_NEAR(altitude_at(plots, "setpoint", t_s), 2.5, 0.03) << "t=" << t_s;
+    EXPECT_NEAR(altitude_at(plots, "estimate", t_s), 2.5, 0.03) << "t=" << t_s;
+  }
+  EXPECT_NEAR(altitude_at(plots, "truth", 1.0), 0.0, 0.03) << "at rest: 0.00 m on the ground";
+  EXPECT_NEAR(altitude_at(plots, "estimate", 1.0), 0.0, 0.03);
+  ASSERT_TRUE(log->truth_rest_down_m);
+  EXPECT_NEAR(*log->truth_rest_down_m, -0.22, 1e-6);
+  EXPECT_FALSE(lacks_starting(*log, "the truth at rest"));
+}
+
+TEST(FlightLog, AGroundStationsPilotFliesOnTheEstimateWhoseDatumIsHomeAlready) {
+  // hitl fly trajectory through a session: the pilot (255) flies on the board's estimate.
+  const std::string path = ::testing::TempDir() + "hover_gcs.tlog";
+  write_hover(path, 255, false);
+  auto log = read_flight_log(path);
+  ASSERT_TRUE(log) << log.error().message;
+  const auto plots = plots_of(*log);
+  EXPECT_NEAR(altitude_at(plots, "truth", 7.5), 2.5, 0.03);
+  EXPECT_NEAR(altitude_at(plots, "setpoint", 7.5), 2.5, 0.03);
+  EXPECT_NEAR(altitude_at(plots, "estimate", 7.5), 2.5, 0.03);
+}
+
+TEST(FlightLog, TruthThatBeginsArmedIsLeftAsRecordedAndSaidSo) {
+  // A client's recording that begins in flight: no rest to take the datum from.
+  const std::string path = ::testing::TempDir() + "armed.tlog";
+  {
+    LogWriter w(path);
+    w.add(0, 1, 1, heartbeat(true));
+    msg::Odometry truth;
+    truth.z = -2.72F;
+    truth.q = {1, 0, 0, 0};
+    truth.estimator_type = static_cast<uint8_t>(mavlink::MavEstimatorType::Mocap);
+    w.add(1000, kSimulatorSystemId, 1, truth);
+    w.close();
+  }
+  auto log = read_flight_log(path);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_FALSE(log->truth_rest_down_m);
+  EXPECT_FLOAT_EQ(static_cast<float>(log->truth.down_m[0]), -2.72F);
+  EXPECT_TRUE(lacks_starting(*log, "the truth at rest (the vehicle was armed when the truth began)"));
+}
+
 TEST(FlightLog, AFileWithoutFramesIsBadInputNamed) {
   const std::string path = ::testing::TempDir() + "not_a.tlog";
   {
