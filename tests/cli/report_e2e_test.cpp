@@ -295,23 +295,37 @@ double nearest(const std::vector<std::pair<double, double>>& series, double t_s)
   return it->second;
 }
 
-TEST(ReportE2E, AHoverAt2_5mPlotsTruthSetpointAndEstimateWithinCentimetres) {
-  // hitl sim -t a 2.5 m hover --record against hitl target: every height on one datum (from home,
-  // 0.00 m on the ground: docs/sim.md), so the plot shows no error the flight did not have.
-  const std::string dir = test::temp_dir();
-  const std::string trajectory = dir + "/hover.json", tlog = dir + "/hover.tlog";
+/// `hitl sim -t` a 2.5 m hover of `hover_s` seconds against `hitl target --lockstep`, recorded to
+/// DIR/NAME; the recording's path (empty, with a test failure, when the flight did not end well).
+std::string record_hover_against_target(const std::string& dir, const std::string& name, int hover_s) {
+  const std::string trajectory = dir + "/hover.json", tlog = dir + "/" + name;
   std::ofstream(trajectory) << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0},
-                                                 {"t": 10, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
+                                                 {"t": )" << hover_s << R"(, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
   const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
   test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
                        std::to_string(gcs), "--vio-port", "0", "--lockstep"});
-  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  if (!board.wait_for_stderr("EMULATED", 10s)) {
+    ADD_FAILURE() << board.err();
+    return "";
+  }
   test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
                      std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t", trajectory,
                      "--record", tlog});
-  EXPECT_EQ(sim.wait(150s), 0) << sim.err();
+  const int code = sim.wait(150s);
   board.signal(SIGINT);
   board.wait(20s);
+  if (code != 0) {
+    ADD_FAILURE() << sim.err();
+    return "";
+  }
+  return tlog;
+}
+
+TEST(ReportE2E, AHoverAt2_5mPlotsTruthSetpointAndEstimateWithinCentimetres) {
+  // hitl sim -t a 2.5 m hover --record against hitl target: every height on one datum (from home,
+  // 0.00 m on the ground: docs/sim.md), so the plot shows no error the flight did not have.
+  const std::string tlog = record_hover_against_target(test::temp_dir(), "hover.tlog", 10);
+  ASSERT_FALSE(tlog.empty());
   auto log = report::read_flight_log(tlog);
   ASSERT_TRUE(log) << log.error().message;
   const auto plots = report::plots_of(*log);
@@ -427,19 +441,8 @@ TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
 TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed) {
   // A hitl sim recording (against hitl target), and ULogs written here on its simulator's clock.
   const std::string dir = test::temp_dir();
-  const std::string trajectory = dir + "/hover.json", tlog = dir + "/s.tlog";
-  std::ofstream(trajectory) << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0},
-                                                 {"t": 4, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
-  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
-  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
-                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
-  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
-  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
-                     std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t", trajectory,
-                     "--record", tlog});
-  ASSERT_EQ(sim.wait(150s), 0) << sim.err();
-  board.signal(SIGINT);
-  board.wait(20s);
+  const std::string tlog = record_hover_against_target(dir, "s.tlog", 4);
+  ASSERT_FALSE(tlog.empty());
   // PX4's estimate at 2.5 m from 1 s to 5 s of the simulator's clock, 50 Hz.
   test::ULogWriter w;
   w.format("vehicle_local_position:uint64_t timestamp;float x;float y;float z;bool xy_valid;bool z_valid;");
