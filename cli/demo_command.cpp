@@ -152,9 +152,10 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
   hil::SessionConfig session;
   const bool px4 = !o.px4_dir.empty();
   if (px4) {  // real PX4, which hitl starts on an instance of its own (engine/hil/px4_launch.h)
-    if (auto build = px4::find_px4_build(o.px4_dir); !build) return log_error("demo", build.error().prefixed("--px4: "));
+    auto build = px4::find_px4_build(o.px4_dir);
+    if (!build) return log_error("demo", build.error().prefixed("--px4: "));
     session.px4 = hil::Px4Options{};
-    session.px4->dir = o.px4_dir;
+    session.px4->build = std::move(build.value());
     session.vio = false;
     if (!o.speed_given && !o.tui) o.speed = kPx4DemoSpeed;
     if (!(o.speed > 0)) {

@@ -85,9 +85,10 @@ Status read_px4_options(SimOptions& opt) {
       return Error::usage("--px4-param and --px4-speed need --px4 DIR (a PX4 that hitl starts)");
     return Ok{};
   }
-  if (auto build = px4::find_px4_build(opt.px4_dir); !build) return build.error().prefixed("--px4: ");  // before anything opens
+  auto build = px4::find_px4_build(opt.px4_dir);  // found once, before anything opens; the error names the option
+  if (!build) return build.error().prefixed("--px4: ");
   hil::Px4Options launch;
-  launch.dir = opt.px4_dir;
+  launch.build = std::move(build.value());
   launch.connect_timeout_s = opt.px4_timeout_s;
   for (const auto& text : opt.px4_params) {
     auto p = px4::parse_px4_param(text);

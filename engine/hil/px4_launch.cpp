@@ -23,10 +23,9 @@ std::string recording_stem(const std::string& path) {
   return path;
 }
 
-/// A new folder $TMPDIR/hitl-px4-XXXXXX.
+/// A new folder $TMPDIR/hitl-px4-XXXXXX (as the demo's and the report's, temp_directory_path()).
 Expected<std::string> new_temp_folder() {
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/hitl-px4-XXXXXX";
+  std::string pattern = (std::filesystem::temp_directory_path() / "hitl-px4-XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr)
     return Error::unavailable("cannot create PX4's working folder '" + pattern + "': " + std::strerror(errno));
   return pattern;
@@ -43,18 +42,16 @@ std::vector<px4::Px4Param> px4_params_for(const SessionConfig& config) {
 Expected<std::unique_ptr<Px4Launch>> Px4Launch::claim(const SessionConfig& config, const OpenStack& open_stack,
                                                       std::unique_ptr<StackLink>& stack) {
   if (!config.px4) return Error::usage("no PX4 to start (--px4 DIR)");
-  auto build = px4::find_px4_build(config.px4->dir);
-  if (!build) return build.error();
-  if (!build->lockstep)
-    return Error::input("'" + build->build_dir + "' is a PX4 build without lockstep (px4_sitl_nolockstep); hitl sim --px4 "
+  const px4::Px4Build& build = config.px4->build;
+  if (!build.lockstep)
+    return Error::input("'" + build.build_dir + "' is a PX4 build without lockstep (px4_sitl_nolockstep); hitl sim --px4 "
                         "needs px4_sitl_default, which scripts/px4-sitl.sh builds");
   auto launch = std::unique_ptr<Px4Launch>(new Px4Launch());
-  launch->build_ = *build;
+  launch->build_ = build;
   launch->connect_timeout_s_ = config.px4->connect_timeout_s;
 
   // The first instance that no PX4 holds and whose simulator port this session can listen on:
   // listening is the claim, so a second session at the same moment moves on to the next one.
-  std::optional<Error> first_error;
   std::vector<std::string> busy;
   for (int index = 0; index <= px4::Px4Instance::kMax && !stack; ++index) {
     const px4::Px4Instance instance{index};
@@ -64,7 +61,6 @@ Expected<std::unique_ptr<Px4Launch>> Px4Launch::claim(const SessionConfig& confi
     }
     auto opened = open_stack(instance);
     if (!opened) {
-      if (!first_error) first_error = opened.error();
       if (busy.size() < 3) busy.push_back(opened.error().message);
       continue;
     }

@@ -146,13 +146,10 @@ Expected<Session::EndReason> Session::Impl::run_steps(const std::atomic<bool>& s
   if (auto connected = s.stack->wait_until_connected(stop, observer, [&s, &observer]() -> std::optional<Error> {
         return s.px4 ? s.px4->check(observer, s.stack->connected()) : std::nullopt;
       });
-      !connected) {
+      !connected || !*connected) {  // PX4 gave up, or stopped while waiting: the summary still says what was pending
     s.start_wall_s = monotonic_s();
     s.publish();
-    return connected.error();
-  } else if (!*connected) {  // stopped while waiting: the summary still says what was pending
-    s.start_wall_s = monotonic_s();
-    s.publish();
+    if (!connected) return connected.error();
     return EndReason::Stopped;
   }
   // The default 50 us timer slack would show up as jitter in every HIL_SENSOR interval.
@@ -204,12 +201,7 @@ Expected<Session::EndReason> Session::Impl::run_steps(const std::atomic<bool>& s
       next_status_s += 1.0;
       s.roll_window();
       s.publish();
-      SessionSnapshot copy;
-      {
-        std::lock_guard<std::mutex> lock(s.snapshot_mutex);
-        copy = s.published;
-      }
-      observer.on_status(copy);
+      observer.on_status(s.published_copy());
     }
     s.wait_next_tick(stop);
   }
@@ -234,9 +226,11 @@ void Session::clear_faults(std::string name) {
   if (impl_->fault_requests.size() < Impl::kMaxFaultRequests) impl_->fault_requests.push_back({std::nullopt, std::move(name)});
 }
 
-SessionSnapshot Session::snapshot() const {
-  std::lock_guard<std::mutex> lock(impl_->snapshot_mutex);
-  return impl_->published;
+SessionSnapshot Session::snapshot() const { return impl_->published_copy(); }
+
+SessionSnapshot Session::Impl::published_copy() const {
+  std::lock_guard<std::mutex> lock(snapshot_mutex);
+  return published;
 }
 
 }  // namespace hitl::hil

@@ -16,6 +16,7 @@
 #include "engine/model/vehicle_config.h"
 #include "engine/model/world_config.h"
 #include "engine/net/link_spec.h"
+#include "engine/px4/px4_build.h"
 #include "engine/px4/px4_process.h"
 #include "engine/sensors/unit_set.h"
 #include "engine/vehicle/trajectory.h"
@@ -42,7 +43,7 @@ using ::hitl::kVioComponentId;
 
 /// hitl sim --px4: a PX4 SITL build that the session starts, owns and stops (engine/hil/px4_launch.h).
 struct Px4Options {
-  std::string dir;                    ///< --px4 DIR: a build folder (bin/px4, etc/) or a PX4 tree with build/px4_sitl_default
+  px4::Px4Build build;                ///< --px4 DIR, found (px4::find_px4_build: a build folder or a PX4 tree)
   std::vector<px4::Px4Param> params;  ///< --px4-param NAME=VALUE, over the vehicle's (px4/vehicle_params.h)
   double connect_timeout_s = 30;      ///< --px4-timeout: PX4 must connect to the simulator port within this
   /// PX4's working folder (its parameters, logs and ULogs stay there); empty: beside the recording

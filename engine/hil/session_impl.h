@@ -103,6 +103,8 @@ struct Session::Impl {
   // --- status and snapshot -----------------------------------------------------------------------
   SessionStatus status(double now_s) const;
   void publish();
+  /// A copy of the last published snapshot (Session::snapshot(), the status the run loop reports).
+  SessionSnapshot published_copy() const;
   void roll_window();
   /// The steps from start to end (Session::run around it starts and stops an owned PX4).
   Expected<Session::EndReason> run_steps(const std::atomic<bool>& stop, Session::Observer& observer);

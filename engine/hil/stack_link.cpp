@@ -86,7 +86,11 @@ void StackLink::forward(std::span<const uint8_t> bytes) {
   ++routed_to_board_;
   if (!telemetry_) return queue(bytes, std::nullopt);
   recording_.record(bytes);
-  if (!telemetry_->has_room_for(bytes.size())) (void)telemetry_->flush();
+  queue_telemetry(bytes);
+}
+
+void StackLink::queue_telemetry(std::span<const uint8_t> bytes) {
+  if (!telemetry_->has_room_for(bytes.size())) (void)telemetry_->flush();  // a full datagram leaves first
   telemetry_->queue(bytes);
 }
 
@@ -97,10 +101,7 @@ void StackLink::flush_telemetry() {
     mavlink::FrameBuffer buf;
     // The HIL link's encoder: one sequence for the session's identity, so that a recording of both
     // links shows no false loss (PX4 numbers its two MAVLink instances apart; that one stays).
-    if (const std::size_t n = encoder_.encode(mavlink::simulator_heartbeat(), buf)) {
-      if (!telemetry_->has_room_for(n)) (void)telemetry_->flush();
-      telemetry_->queue({buf.data(), n});
-    }
+    if (const std::size_t n = encoder_.encode(mavlink::simulator_heartbeat(), buf)) queue_telemetry({buf.data(), n});
   }
   if (telemetry_->queued_bytes() == 0) return;
   if (const auto st = telemetry_->flush(); !st) traffic_.count_failed(1, st.error().message);

@@ -113,6 +113,7 @@ class StackLink {
   /// The telemetry link's frames out, with a HEARTBEAT once a second so that the stack learns
   /// where to send (PX4's UDP MAVLink answers the address it last heard).
   void flush_telemetry();
+  void queue_telemetry(std::span<const uint8_t> bytes);
   void queue(std::span<const uint8_t> bytes, std::optional<uint32_t> counted_id);
   /// Sends what the link holds as one datagram and counts its messages (batch_).
   void send_batch();

@@ -76,8 +76,7 @@ void TrajectoryPilot::on_board_frame(const mavlink::Frame& f) {
       armed_ = shows_armed(hb);
       // The mode is set when the board shows it: PX4 SITL acknowledged a DO_SET_MODE as accepted and
       // then said "Switching to Position is currently not available" to the next one.
-      const Px4Mode wanted = config_.mode == StickMode::Attitude ? kPx4Stabilized : kPx4Position;
-      mode_set_ = (hb.custom_mode & 0xFFFF0000u) == wanted.custom_mode();
+      mode_set_ = (hb.custom_mode & 0xFFFF0000u) == stick_mode().custom_mode();
     }
   } else if (f.is<msg::SysStatus>()) {
     ready_ = (f.as<msg::SysStatus>().onboard_control_sensors_health & mavlink::sys_status::kPrearmCheck) != 0;
@@ -120,12 +119,11 @@ msg::RcChannelsOverride TrajectoryPilot::sticks(double roll, double pitch, doubl
   return rc;
 }
 
-void TrajectoryPilot::centred_sticks(double t_s, PilotOutput& out) {
-  if (t_s - last_rc_s_ < 1.0 / config_.rc_rate_hz) return;
+void TrajectoryPilot::send_sticks(double t_s, const msg::RcChannelsOverride& rc, PilotOutput& out) {
   last_rc_s_ = t_s;
-  out.rc = sticks(0, 0, 0, 0.5);
-  out.manual = manual_control_for(*out.rc);
-  last_sticks_ = out.rc;
+  out.rc = rc;
+  out.manual = manual_control_for(rc);
+  last_sticks_ = rc;
 }
 
 void TrajectoryPilot::enter(PilotState next, double t_s, PilotOutput& out, const std::string& why) {
@@ -217,10 +215,10 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         // Centred sticks first: PX4 takes a manual mode only once its manual control input is
         // valid, which PX4 SITL (MANUAL_CONTROL) judged only after several samples: a second of them.
         if (centred_since_s_ < 0) centred_since_s_ = t_s;
-        centred_sticks(t_s, out);
+        if (sticks_due(t_s)) send_sticks(t_s, sticks(0, 0, 0, 0.5), out);
         const bool attitude = config_.mode == StickMode::Attitude;
         if (!mode_set_ && resend && t_s - centred_since_s_ >= kCentredBeforeMode_s) {
-          out.commands.push_back(command(set_mode_request(attitude ? kPx4Stabilized : kPx4Position)));
+          out.commands.push_back(command(set_mode_request(stick_mode())));
           last_command_s_ = t_s;
         }
         if (mode_set_) {
@@ -250,24 +248,17 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         enter(PilotState::Land, t_s, out);
         break;
       }
-      if (t_s - last_rc_s_ >= 1.0 / config_.rc_rate_hz) {
+      if (sticks_due(t_s)) {
         const double dt_s = last_rc_t_s_ < 0 ? 1.0 / config_.rc_rate_hz : std::clamp(t_s - last_rc_t_s_, 0.0, 0.2);
-        last_rc_s_ = t_s;
         last_rc_t_s_ = t_s;
-        out.rc = config_.mode == StickMode::Attitude ? attitude_sticks(ref, pose, dt_s) : velocity_sticks(ref, pose);
-        out.manual = manual_control_for(*out.rc);
-        last_sticks_ = out.rc;
+        send_sticks(t_s, config_.mode == StickMode::Attitude ? attitude_sticks(ref, pose, dt_s) : velocity_sticks(ref, pose), out);
       }
       break;
     }
     case PilotState::Land:
       // The last sticks held as they were: the manual control input stays valid (no stick-loss
       // failsafe), and sticks that do not move are no pilot taking over (PX4's COM_RC_OVERRIDE).
-      if (armed_ && last_sticks_ && t_s - last_rc_s_ >= 1.0 / config_.rc_rate_hz) {
-        last_rc_s_ = t_s;
-        out.rc = *last_sticks_;
-        out.manual = manual_control_for(*out.rc);
-      }
+      if (armed_ && last_sticks_ && sticks_due(t_s)) send_sticks(t_s, *last_sticks_, out);
       if (!armed_) {
         enter(PilotState::Done, t_s, out, "landed and disarmed");
       } else if (resend) {

@@ -18,6 +18,7 @@
 
 #include "base/mavlink/frame.h"
 #include "base/mavlink/messages.h"
+#include "engine/vehicle/action.h"
 #include "engine/vehicle/command_request.h"
 #include "engine/vehicle/trajectory.h"
 
@@ -109,8 +110,12 @@ class TrajectoryPilot {
  private:
   void enter(PilotState next, double t_s, PilotOutput& out, const std::string& why = "");
   mavlink::msg::CommandLong command(const CommandRequest& request) const;
-  /// Centred sticks (RC and MANUAL_CONTROL) at the RC rate.
-  void centred_sticks(double t_s, PilotOutput& out);
+  /// The RC rate's next sticks are due at `t_s`.
+  bool sticks_due(double t_s) const { return t_s - last_rc_s_ >= 1.0 / config_.rc_rate_hz; }
+  /// `rc` as this step's sticks: RC_CHANNELS_OVERRIDE and MANUAL_CONTROL, remembered for LAND.
+  void send_sticks(double t_s, const mavlink::msg::RcChannelsOverride& rc, PilotOutput& out);
+  /// The mode the sticks are for: Position (velocity sticks) or Stabilized (attitude sticks).
+  Px4Mode stick_mode() const { return config_.mode == StickMode::Attitude ? kPx4Stabilized : kPx4Position; }
   mavlink::msg::RcChannelsOverride sticks(double roll, double pitch, double yaw, double throttle) const;
   mavlink::msg::RcChannelsOverride velocity_sticks(const TrajectoryReference& ref, const PilotPose& pose) const;
   mavlink::msg::RcChannelsOverride attitude_sticks(const TrajectoryReference& ref, const PilotPose& pose, double dt_s);
@@ -133,8 +138,8 @@ class TrajectoryPilot {
   double state_start_s_ = 0;
   double last_command_s_ = -1e9;
   double last_rc_s_ = -1e9;
-  double centred_since_s_ = -1;
-  std::optional<mavlink::msg::RcChannelsOverride> last_sticks_;  ///< the last sticks sent (LAND holds them)  ///< TAKEOFF at height: the first centred sticks sent
+  double centred_since_s_ = -1;  ///< TAKEOFF at height: the first centred sticks sent
+  std::optional<mavlink::msg::RcChannelsOverride> last_sticks_;  ///< the last sticks sent (LAND holds them)
   static constexpr double kCentredBeforeMode_s = 1.0;
   double trajectory_start_s_ = 0;
   bool armed_ = false;
