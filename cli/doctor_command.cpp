@@ -8,6 +8,9 @@
 #include "cli/number_check.h"
 #include "engine/doctor/check_catalog.h"
 #include "engine/doctor/doctor.h"
+#include "engine/hil/px4_vehicle_params.h"
+#include "engine/model/x500_defaults.h"
+#include "engine/sensors/vehicle_file.h"
 
 namespace hitl::cli {
 namespace {
@@ -39,6 +42,26 @@ nlohmann::json check_json(const doctor::CheckResult& r) {
           {"result", doctor::to_string(r.result)},
           {"saw", r.saw},
           {"fix", r.fix.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.fix)}};
+}
+
+/// --px4's own options: the parameters hitl sim --px4 gives PX4 for the session's vehicle and
+/// --px4-param's, as hitl sim puts them together (engine/hil/px4_launch.cpp).
+struct DoctorPx4Options {
+  std::vector<std::string> params;  ///< --px4-param NAME=VALUE
+  std::string vehicle_file;         ///< --vehicle FILE.json
+};
+
+Status read_px4_options(const DoctorPx4Options& p, doctor::DoctorOptions& o) {
+  auto vehicle = p.vehicle_file.empty() ? Expected<sensors::VehicleFile>(sensors::default_vehicle_file())
+                                        : sensors::load_vehicle_file(p.vehicle_file);
+  if (!vehicle) return vehicle.error().prefixed("--vehicle: ");
+  o.px4_expected_params = hil::px4_vehicle_params(vehicle->vehicle, model::default_world_config().gravity_m_s2);
+  for (const auto& text : p.params) {
+    auto param = px4::parse_px4_param(text);
+    if (!param) return param.error().prefixed("--px4-param ");
+    o.px4_expected_params.push_back(*param);
+  }
+  return Ok{};
 }
 
 int run_doctor(const GlobalOptions& g, const doctor::DoctorOptions& o) {
@@ -90,6 +113,7 @@ int run_doctor(const GlobalOptions& g, const doctor::DoctorOptions& o) {
 
 void add_doctor_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   auto o = std::make_shared<doctor::DoctorOptions>();
+  auto px4_options = std::make_shared<DoctorPx4Options>();
   auto* sub = app.add_subcommand("doctor",
                                  "Check the whole HITL setup (host, link, board sensors, parameters, EKF2, arming, VIO, "
                                  "simulator): pass/warn/fail/skip with what was seen and the fix");
@@ -100,16 +124,32 @@ void add_doctor_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   sub->add_flag("--no-vio", [o](std::int64_t) { o->vio = false; }, "VIO is not used: skip its checks");
   sub->add_flag("--adb", o->adb, "The board is on adb: check adb devices and run the VIO checks through adb shell");
   sub->add_option("--adb-serial", o->adb_serial, "Which adb device is the board (implies --adb)");
+  sub->add_option("--px4", o->px4_dir,
+                  "Also check a PX4 SITL build for hitl sim --px4 (DIR as hitl sim --px4 takes it): found, version, "
+                  "lockstep, a free instance. A session's own PX4 is checked without it")
+      ->type_name("DIR");
+  sub->add_option("--px4-param", px4_options->params,
+                  "The session's --px4-param, so that px4-params expects them over the vehicle's; repeatable")
+      ->type_name("NAME=VALUE");
+  sub->add_option("--vehicle", px4_options->vehicle_file, "The session's --vehicle, whose parameters px4-params expects")
+      ->check(CLI::ExistingFile)->type_name("FILE.json");
   sub->add_option("--listen", o->listen_s, "Seconds to listen to the board and the session (rates need two reports)")
       ->capture_default_str()->check(number_in(1.2, 60.0));
   sub->footer(
       "Checks, in order (docs/doctor.md): host (route to the board, adb devices, ports), link (HEARTBEAT, HIL mode,\n"
       "mavlink status, HIL_ACTUATOR_CONTROLS rate, flags 0x0F, armed bit), board sensors (dsp_hitl counters), parameters\n"
       "(as hitl params check), EKF2, arming, VIO (ODOMETRY, voxl-hitl-vio-server, hitl_vio, en_hitl), simulator (session,\n"
-      "paused, real-time factor, late ticks).\n"
+      "paused, real-time factor, late ticks), PX4 SITL (the build with --px4 DIR, its instance, PX4 connected to the\n"
+      "session, its parameters as hitl set them). Against a hitl sim --px4 session the VOXL2's own checks skip.\n"
       "Exit: 0 when nothing failed, 1 when a check failed.\n"
-      "Examples:\n  hitl doctor -i 192.168.101.2\n  hitl doctor --adb\n  hitl --json doctor | jq -c 'select(.result == \"fail\")'");
-  sub->callback([&options, &state, o]() { state.exit_code = run_doctor(options, *o); });
+      "Examples:\n  hitl doctor -i 192.168.101.2\n  hitl doctor --adb\n  hitl doctor --px4 ~/px4/PX4-Autopilot\n  hitl --json doctor | jq -c 'select(.result == \"fail\")'");
+  sub->callback([&options, &state, o, px4_options]() {
+    if (auto read = read_px4_options(*px4_options, *o); !read) {
+      state.exit_code = log_error("doctor", read.error());
+      return;
+    }
+    state.exit_code = run_doctor(options, *o);
+  });
 }
 
 }  // namespace hitl::cli

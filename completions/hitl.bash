@@ -41,7 +41,7 @@ _hitl_options() {
         'fly land') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly hold') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly trajectory') echo '-h --help --rate --mode --record --report --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --px4 --px4-param --vehicle --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board install') echo '-h --help --adb --adb-serial --packages --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board start') echo '-h --help --adb --adb-serial --reset-params --wait --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -179,6 +179,9 @@ _hitl_value() {
         'doctor|--hil-port') echo 'text' ;;
         'doctor|--vio-port') echo 'text' ;;
         'doctor|--adb-serial') echo 'text' ;;
+        'doctor|--px4') echo 'text' ;;
+        'doctor|--px4-param') echo 'text' ;;
+        'doctor|--vehicle') echo 'file *.json' ;;
         'doctor|--listen') echo 'text' ;;
         'board install|--adb-serial') echo 'text' ;;
         'board install|--packages') echo 'text' ;;

@@ -25,6 +25,9 @@ inline constexpr std::string_view kStatusActuatorRateName = "sim_act_hz";  ///< 
 inline constexpr std::string_view kStatusActuatorFlagsName = "sim_act_fl"; ///< INT: the last one's flags (-1: none yet)
 inline constexpr std::string_view kStatusActuatorArmedName = "sim_act_ar"; ///< INT: the last one's MAV_MODE_FLAG_SAFETY_ARMED (0/1; -1: none yet)
 inline constexpr std::string_view kStatusLoopLatencyP99Name = "sim_lat99";  ///< INT: loop latency's p99 so far, us (-1: none answered yet)
+/// INT, only from a session that started PX4 SITL (hitl sim --px4): its instance N (TCP 4560+N, GCS
+/// UDP 18570+N, system id N+1) once PX4 has connected to the simulator port, -1 while waiting.
+inline constexpr std::string_view kStatusPx4InstanceName = "sim_px4";
 /// For `hitl report`'s loop-latency plot (docs/report.md), beside sim_lat99 and alike:
 inline constexpr std::string_view kStatusLoopLatencyP50Name = "sim_lat50";  ///< INT: loop latency's median so far, us (-1: none yet)
 inline constexpr std::string_view kStatusLoopLatencyMaxName = "sim_latmx";  ///< INT: loop latency's max so far, us (-1: none yet)

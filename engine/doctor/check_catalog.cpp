@@ -32,6 +32,10 @@ const std::vector<CheckInfo>& doctor_checks() {
       {check::kRealTime, group::kSimulator, "real-time factor"},
       {check::kLateTicks, group::kSimulator, "late ticks"},
       {check::kLoopLatency, group::kSimulator, "loop latency at the board"},
+      {check::kPx4Build, group::kPx4, "PX4 SITL build (--px4 DIR)"},
+      {check::kPx4Instance, group::kPx4, "PX4 instance and its ports"},
+      {check::kPx4Connected, group::kPx4, "PX4 connected to the session"},
+      {check::kPx4Params, group::kPx4, "PX4's parameters as hitl set them"},
   };
   return checks;
 }

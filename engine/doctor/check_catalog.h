@@ -19,6 +19,7 @@ inline constexpr const char* kEstimator = "estimator";
 inline constexpr const char* kArming = "arming";
 inline constexpr const char* kVio = "VIO";
 inline constexpr const char* kSimulator = "simulator";
+inline constexpr const char* kPx4 = "PX4 SITL";
 }  // namespace group
 
 namespace check {
@@ -55,6 +56,11 @@ inline constexpr const char* kPaused = "paused";
 inline constexpr const char* kRealTime = "real-time";
 inline constexpr const char* kLateTicks = "late-ticks";
 inline constexpr const char* kLoopLatency = "loop-latency";
+// PX4 SITL (hitl sim --px4, hitl doctor --px4 DIR)
+inline constexpr const char* kPx4Build = "px4-build";
+inline constexpr const char* kPx4Instance = "px4-instance";
+inline constexpr const char* kPx4Connected = "px4-connected";
+inline constexpr const char* kPx4Params = "px4-params";
 }  // namespace check
 
 struct CheckInfo {

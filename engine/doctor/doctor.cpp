@@ -16,10 +16,13 @@
 #include "engine/doctor/link_checks.h"
 #include "engine/doctor/observations.h"
 #include "engine/doctor/param_checks.h"
+#include "engine/doctor/px4_checks.h"
 #include "engine/doctor/sensor_checks.h"
 #include "engine/doctor/session_probe.h"
 #include "engine/doctor/simulator_checks.h"
 #include "engine/doctor/vio_checks.h"
+#include "engine/px4/px4_instance.h"
+#include "engine/vehicle/firmware_version.h"
 #include "engine/vehicle/param_client.h"
 #include "engine/vehicle/shell_client.h"
 #include "engine/vehicle/shell_poller.h"
@@ -44,6 +47,7 @@ struct BoardFindings {
   BoardOutput vio_active = Error::failed("no link to the board");
   BoardOutput vio_pipes = Error::failed("no link to the board");
   BoardOutput vision_hub = Error::failed("no link to the board");
+  std::optional<std::string> firmware;  ///< AUTOPILOT_VERSION, asked only of PX4 that the session started
 };
 
 void request_message(vehicle::VehicleLink& link, uint32_t id) {
@@ -113,7 +117,10 @@ BoardFindings examine_board(const DoctorOptions& o, const AppsShell* adb_shell, 
       (*seen.session.actuator_armed == 1) != seen.heartbeat->armed())
     listen(1.5);
 
-  if (o.vio) {
+  // PX4 SITL that the session started (it says sim_px4): its version; it has no VOXL2 apps processor
+  const bool px4_sitl = session_runs_px4(tracker.observations().session);
+  if (px4_sitl) b.firmware = vehicle::request_firmware_version(l);
+  if (o.vio && !px4_sitl) {
     progress("asking the board's apps processor about VIO");
     const AppsShell px4 = AppsShell::px4(run_shell);
     const AppsShell& apps = adb_shell != nullptr ? *adb_shell : px4;
@@ -124,6 +131,23 @@ BoardFindings examine_board(const DoctorOptions& o, const AppsShell* adb_shell, 
   }
   b.seen = tracker.observations();
   return b;
+}
+
+/// The build (--px4 DIR), the instances hitl sim --px4 would find busy before a free one, and what
+/// hitl gives PX4.
+Px4Findings find_px4(const DoctorOptions& o) {
+  Px4Findings f;
+  if (!o.px4_dir.empty()) f.build = px4::find_px4_build(o.px4_dir);
+  for (int i = 0; i <= px4::Px4Instance::kMax; ++i) {
+    const std::string why = px4::px4_instance_busy(px4::Px4Instance{i});
+    if (why.empty()) {
+      f.first_free = i;
+      break;
+    }
+    if (f.busy.size() < 4) f.busy.push_back({i, why});
+  }
+  f.expected = o.px4_expected_params;
+  return f;
 }
 
 }  // namespace
@@ -152,7 +176,7 @@ std::vector<CheckResult> run_doctor(const DoctorOptions& o, const ResultSink& on
   }
   std::vector<PortProbe> probes{probe_udp_port(o.hil_port, "HIL")};
   if (o.vio) probes.push_back(probe_udp_port(o.vio_port, "VIO"));
-  emit(ports_check(probes, is_loopback_host(o.link.target_ip)));
+  const CheckResult ports = ports_check(probes, is_loopback_host(o.link.target_ip));
 
   // everything the board says, then the checks on it in order
   BoardFindings b = examine_board(o, adb_shell ? &*adb_shell : nullptr, say);
@@ -168,14 +192,23 @@ std::vector<CheckResult> run_doctor(const DoctorOptions& o, const ResultSink& on
   const bool linked = b.link.ok();
   const std::string no_link = "no link to the board";
   auto skipped = [&](const char* id) { return make_result(id, Verdict::Skip, no_link); };
+  // Against PX4 SITL that the session started, the VOXL2's own checks (its ports, HIL mode, HIL
+  // instance, actuator flags, dsp_hitl, HITL parameters, VIO) have nothing to look at.
+  const bool px4_sitl = session_runs_px4(session);
+  auto board_only = [&](const char* id) { return make_result(id, Verdict::Skip, px4_sitl_skip_reason(session)); };
+  emit(px4_sitl ? board_only(check::kPorts) : ports);
 
   // link
   emit(heartbeat_check(b.link, seen.heartbeat));
-  emit(hil_mode_check(seen.heartbeat));
-  emit(linked ? mavlink_instances_check(b.mavlink_status, o.hil_port) : skipped(check::kMavlinkInstances));
+  emit(px4_sitl ? board_only(check::kHilMode) : hil_mode_check(seen.heartbeat));
+  emit(px4_sitl ? board_only(check::kMavlinkInstances)
+       : linked ? mavlink_instances_check(b.mavlink_status, o.hil_port)
+                : skipped(check::kMavlinkInstances));
   const std::string no_session = no_session_reason(o.link.session_port);
   emit(session.heard() ? actuators_check(session) : make_result(check::kActuators, Verdict::Skip, no_session));
-  emit(session.heard() ? actuator_flags_check(session) : make_result(check::kActuatorFlags, Verdict::Skip, no_session));
+  emit(px4_sitl          ? board_only(check::kActuatorFlags)
+       : session.heard() ? actuator_flags_check(session)
+                         : make_result(check::kActuatorFlags, Verdict::Skip, no_session));
   emit(session.heard() ? armed_state_check(session, seen.heartbeat) : make_result(check::kArmedState, Verdict::Skip, no_session));
 
   // board sensors: the board's clock runs at the session's pace in lockstep, else at real time
@@ -183,10 +216,16 @@ std::vector<CheckResult> run_doctor(const DoctorOptions& o, const ResultSink& on
   const double rtf = session.rtf && std::isfinite(*session.rtf) && *session.rtf > 0 ? *session.rtf : 1.0;
   const double pace = session.lockstep.value_or(false) ? rtf : 1.0;
   const std::optional<bool> sending = session.heard() ? std::optional<bool>(!session.paused.value_or(false)) : std::nullopt;
-  emit(linked ? dsp_hitl_check(b.dsp_first, b.dsp_second, pace, sending) : skipped(check::kDspHitl));
+  emit(px4_sitl ? board_only(check::kDspHitl)
+       : linked ? dsp_hitl_check(b.dsp_first, b.dsp_second, pace, sending)
+                : skipped(check::kDspHitl));
 
-  // parameters
-  if (linked) {
+  // parameters (the board's HITL set; PX4 SITL's are px4-params below)
+  if (px4_sitl) {
+    for (const char* id : {check::kParamsSystem, check::kParamsCalibration, check::kParamsEkf2, check::kParamsArming,
+                           check::kParamsAllocation})
+      emit(board_only(id));
+  } else if (linked) {
     for (auto& r : param_checks(b.params)) emit(std::move(r));
   } else {
     for (const char* id : {check::kParamsSystem, check::kParamsCalibration, check::kParamsEkf2, check::kParamsArming,
@@ -199,9 +238,9 @@ std::vector<CheckResult> run_doctor(const DoctorOptions& o, const ResultSink& on
   emit(linked ? arming_check(seen.heartbeat, seen.sys_status, seen.statustext, b.commander_check) : skipped(check::kArming));
 
   // VIO
-  if (!o.vio) {
+  if (!o.vio || px4_sitl) {
     for (const char* id : {check::kVioOdometry, check::kVioServer, check::kVioPipe, check::kVisionHub})
-      emit(vio_skipped(id, "--no-vio: VIO not used"));
+      emit(px4_sitl ? board_only(id) : vio_skipped(id, "--no-vio: VIO not used"));
   } else {
     emit(vio_odometry_check(b.vio_status, hitl::kVioRate_hz * rtf));  // ODOMETRY is paced by simulated time
     emit(vio_server_check(b.vio_active));
@@ -218,6 +257,14 @@ std::vector<CheckResult> run_doctor(const DoctorOptions& o, const ResultSink& on
   emit(real_time_check(session));
   emit(late_ticks_check(session));
   emit(loop_latency_check(session));
+
+  // PX4 SITL: the build (--px4 DIR), the instance, PX4 connected, its parameters as hitl set them
+  Px4Findings px4 = find_px4(o);
+  px4.running_version = b.firmware;
+  emit(px4_build_check(px4));
+  emit(px4_instance_check(px4, session));
+  emit(px4_connected_check(px4, session, seen.heartbeat));
+  emit(px4_params_check(px4, session, b.params));
   return results;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/doctor/check_result.h"
+#include "engine/px4/px4_process.h"
 #include "engine/vehicle/vehicle_link.h"
 
 namespace hitl::doctor {
@@ -24,6 +25,9 @@ struct DoctorOptions {
   bool adb = false;               ///< --adb: check adb devices and use adb shell for the VIO checks
   std::string adb_serial;         ///< --adb-serial (implies --adb)
   double listen_s = 2.5;          ///< --listen: how long to listen to the board and the session
+  std::string px4_dir;            ///< --px4 DIR: the PX4 SITL build hitl sim --px4 would start (empty: none)
+  /// What hitl sim --px4 gives PX4: the x500's parameters, then --px4-param's (cli puts them together)
+  std::vector<px4::Px4Param> px4_expected_params;
 };
 
 /// Each result as soon as it is decided; progress lines ("reading parameters") for stderr.

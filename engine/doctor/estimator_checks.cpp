@@ -1,5 +1,6 @@
 #include "engine/doctor/estimator_checks.h"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -19,19 +20,29 @@ CheckResult estimator_check(const std::optional<EstimatorStatusSeen>& status) {
   namespace e = mavlink::estimator_status;
   const uint16_t required = e::kAttitude | e::kVelocityHoriz | e::kVelocityVert | e::kPosHorizAbs | e::kPosVertAbs;
   std::string missing, faults;
+  // PX4 v1.16 sets CONST_POS_MODE whenever the vehicle is at rest, also while it fuses GNSS
+  // (ekf_helper.cpp: fake_pos || valid_fake_pos || vehicle_at_rest): a fault only without an
+  // absolute horizontal position.
+  const bool absolute_position = (status->flags & e::kPosHorizAbs) != 0;
   for (const auto& f : telemetry::estimator_flags(status->flags)) {
     if ((required & f.bit) != 0 && !f.set) missing += (missing.empty() ? "" : ", ") + std::string(f.word);
+    if (f.bit == e::kConstPosMode && absolute_position) continue;
     if (f.fault && f.set) faults += (faults.empty() ? "" : ", ") + std::string(f.word);
   }
   struct Ratio {
     const char* name;
     double value;
+    bool sensor_optional;  ///< a sensor the x500 lacks: NaN is PX4 v1.16's "not fused"
   };
-  const Ratio ratios[] = {{"velocity", status->vel_ratio},   {"horizontal position", status->pos_horiz_ratio},
-                          {"height", status->pos_vert_ratio}, {"magnetometer", status->mag_ratio},
-                          {"height above ground", status->hagl_ratio}, {"airspeed", status->tas_ratio}};
+  const Ratio ratios[] = {{"velocity", status->vel_ratio, false},
+                          {"horizontal position", status->pos_horiz_ratio, false},
+                          {"height", status->pos_vert_ratio, false},
+                          {"magnetometer", status->mag_ratio, false},
+                          {"height above ground", status->hagl_ratio, true},
+                          {"airspeed", status->tas_ratio, true}};
   std::string high, raised;
   for (const auto& r : ratios) {
+    if (r.sensor_optional && std::isnan(r.value)) continue;
     if (!(r.value <= 1.0)) high += (high.empty() ? "" : ", ") + std::string(r.name) + " " + fixed(r.value, 2);
     else if (r.value > kTestRatioWarn) raised += (raised.empty() ? "" : ", ") + std::string(r.name) + " " + fixed(r.value, 2);
   }

@@ -106,6 +106,8 @@ void ObservationTracker::on_other_frame(const mavlink::Frame& f, double now_s) {
       s.actuator_armed = m.value;
     } else if (name == hitl::kStatusLoopLatencyP99Name) {
       s.loop_latency_p99_us = m.value;
+    } else if (name == hitl::kStatusPx4InstanceName) {
+      s.px4_instance = m.value;
     }
   } else if (f.is<msg::Heartbeat>()) {
     const auto m = f.as<msg::Heartbeat>();

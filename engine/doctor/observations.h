@@ -41,6 +41,7 @@ struct SessionStatus {
   std::optional<int32_t> actuator_flags;  ///< -1: none received yet
   std::optional<int32_t> actuator_armed;  ///< 0/1; -1: none received yet
   std::optional<int32_t> loop_latency_p99_us;  ///< "sim_lat99"; -1: no answer yet
+  std::optional<int32_t> px4_instance;  ///< "sim_px4": the PX4 the session started (-1: not connected yet)
   /// "sim_late" (late ticks so far) as first and last heard, with their times.
   struct LateSample {
     double t_s = 0;

@@ -167,6 +167,7 @@ void ClientServices::send_doctor_status(uint32_t boot_ms, const SessionStatus& s
   named_float(kStatusActuatorRateName, status.actuator_rate_hz);
   named_int(kStatusActuatorFlagsName, heard ? actuators.last_flags() : -1);
   named_int(kStatusActuatorArmedName, heard ? (actuators.armed() ? 1 : 0) : -1);
+  if (status.px4_instance) named_int(kStatusPx4InstanceName, *status.px4_instance);
 }
 
 /// NAMED_VALUE_INT sim_lat50, sim_lat99 (hitl doctor's), sim_latmx: us so far, -1 before an answer.

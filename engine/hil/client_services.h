@@ -37,6 +37,9 @@ struct SessionStatus {
   std::optional<double> loop_latency_p99_us;  ///< loop_latency.h; none before the first answer
   std::optional<double> loop_latency_p50_us;  ///< the same
   std::optional<double> loop_latency_max_us;  ///< the same
+  /// --px4: the instance of the PX4 the session started once it connected, -1 while waiting;
+  /// nullopt without --px4 (sim_px4 is then not sent).
+  std::optional<int> px4_instance;
 };
 
 class ClientServices {

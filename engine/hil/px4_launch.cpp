@@ -10,7 +10,7 @@
 
 #include "base/common/clock.h"
 #include "engine/hil/pacer.h"
-#include "engine/px4/vehicle_params.h"
+#include "engine/hil/px4_vehicle_params.h"
 
 namespace hitl::hil {
 namespace {
@@ -34,7 +34,7 @@ Expected<std::string> new_temp_folder() {
 }  // namespace
 
 std::vector<px4::Px4Param> px4_params_for(const SessionConfig& config) {
-  auto params = px4::vehicle_px4_params(config.vehicle, config.world.gravity_m_s2);
+  auto params = px4_vehicle_params(config.vehicle, config.world.gravity_m_s2);
   if (config.px4) params.insert(params.end(), config.px4->params.begin(), config.px4->params.end());
   return params;
 }

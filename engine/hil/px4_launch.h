@@ -70,7 +70,7 @@ class Px4Launch {
   std::optional<Error> refused_;
 };
 
-/// The parameters hitl gives PX4 for `config`: the vehicle's (px4/vehicle_params.h), then --px4-param's.
+/// The parameters hitl gives PX4 for `config`: the vehicle's (px4_vehicle_params.h), then --px4-param's.
 std::vector<px4::Px4Param> px4_params_for(const SessionConfig& config);
 
 }  // namespace hitl::hil

@@ -44,7 +44,7 @@ using ::hitl::kVioComponentId;
 /// hitl sim --px4: a PX4 SITL build that the session starts, owns and stops (engine/hil/px4_launch.h).
 struct Px4Options {
   px4::Px4Build build;                ///< --px4 DIR, found (px4::find_px4_build: a build folder or a PX4 tree)
-  std::vector<px4::Px4Param> params;  ///< --px4-param NAME=VALUE, over the vehicle's (px4/vehicle_params.h)
+  std::vector<px4::Px4Param> params;  ///< --px4-param NAME=VALUE, over the vehicle's (hil/px4_vehicle_params.h)
   double connect_timeout_s = 30;      ///< --px4-timeout: PX4 must connect to the simulator port within this
   /// PX4's working folder (its parameters, logs and ULogs stay there); empty: beside the recording
   /// (FILE.px4/) or a new $TMPDIR/hitl-px4-XXXXXX

@@ -233,6 +233,7 @@ SessionStatus Session::Impl::status(double now_s) const {
   for (const auto& p : paths->stats(now_s))
     if (!p.outgoing && p.stats.since_last_s >= 0 && p.stats.since_last_s < telemetry::kStaleAfter_s)
       s.actuator_rate_hz = p.stats.rate_hz;
+  if (px4) s.px4_instance = stack->connected() ? px4->instance().index : -1;
   return s;
 }
 

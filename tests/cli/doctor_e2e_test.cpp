@@ -9,12 +9,14 @@
 #include <set>
 #include <sstream>
 
+#include "tests/support/json_lines.h"
 #include "tests/support/process.h"
 
 namespace hitl {
 namespace {
 
 using namespace std::chrono_literals;
+using test::json_lines;
 
 /// What each fault must make fail, and nothing else (the checks it implies, docs/doctor.md).
 const std::map<std::string, std::set<std::string>>& implied_failures() {
@@ -29,17 +31,6 @@ const std::map<std::string, std::set<std::string>>& implied_failures() {
       {"no-vio-listener", {"vio-odometry"}},
   };
   return m;
-}
-
-std::vector<nlohmann::json> json_lines(const std::string& out) {
-  std::vector<nlohmann::json> lines;
-  std::istringstream in(out);
-  std::string line;
-  while (std::getline(in, line)) {
-    auto j = nlohmann::json::parse(line, nullptr, false);
-    if (!j.is_discarded() && j.is_object()) lines.push_back(std::move(j));
-  }
-  return lines;
 }
 
 /// The emulated board and the simulator in lockstep at --speed 5, on free ports.
@@ -118,9 +109,9 @@ TEST_P(DoctorFault, FailsExactlyTheChecksTheFaultImplies) {
       EXPECT_TRUE(j["fix"].is_string() && !j["fix"].get<std::string>().empty()) << j.dump();
     }
   }
-  EXPECT_EQ(order.size(), 26u) << r.out;
+  EXPECT_EQ(order.size(), 30u) << r.out;
   EXPECT_EQ(order.front(), "route");
-  EXPECT_EQ(order.back(), "loop-latency");
+  EXPECT_EQ(order.back(), "px4-params");
   EXPECT_EQ(failed, implied_failures().at(fault)) << r.out << r.err;
   EXPECT_EQ(summary["failed"].get<std::size_t>(), failed.size());
   EXPECT_EQ(summary["ok"].get<bool>(), failed.empty());
@@ -165,7 +156,7 @@ TEST(DoctorE2E, NoBoardNoSessionHumanOutput) {
             std::string::npos) << r.out;
   EXPECT_NE(r.out.find("[skip] dsp_hitl counters and rates: no link to the board"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("[warn] HIL and VIO ports on this host"), std::string::npos) << r.out;  // nothing holds them
-  EXPECT_NE(r.out.find("26 checks: 0 passed, 1 warned, 2 failed, 23 skipped"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("30 checks: 0 passed, 1 warned, 2 failed, 27 skipped"), std::string::npos) << r.out;
 }
 
 TEST(DoctorE2E, BadOptionsAreUsageErrors) {

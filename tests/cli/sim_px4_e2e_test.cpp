@@ -1,7 +1,8 @@
 // hitl sim --px4 end to end against stand-in PX4 builds (bin/px4 a bash script, etc/init.d-posix/rcS):
 // what is not a build, a PX4 that exits before or after it connects, one that never connects, one
 // that refuses a parameter, and that neither Ctrl-C nor SIGKILL of hitl leaves a PX4 behind; two
-// sessions at once claim different instances. Real PX4 flies in tests/px4 (label px4).
+// sessions at once claim different instances; hitl doctor --px4 on a stand-in build and on a folder
+// that is not one. Real PX4 flies in tests/px4 (label px4).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,10 +11,12 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <string>
 #include <thread>
 
+#include "tests/support/json_lines.h"
 #include "tests/support/process.h"
 
 namespace hitl::test {
@@ -195,6 +198,37 @@ TEST(SimPx4E2E, TwoSessionsAtOnceClaimDifferentInstances) {
   a.sim->wait(15s);
   b.sim->wait(15s);
 }
+
+TEST(SimPx4E2E, DoctorChecksAPx4BuildAndTheInstanceItWouldTake) {
+  // hitl doctor --px4 DIR with no session: the build (a stand-in says no version: warn), the instance
+  // hitl sim --px4 would take; a folder that is not a build fails naming what is missing.
+  const std::string dir = standin_build(temp_dir(), "exit 0\n");
+  auto doctor = [](const std::string& px4) {
+    return run_hitl({"--json", "doctor", "-i", "127.0.0.1", "--port", std::to_string(free_udp_port()), "--session-port",
+                     std::to_string(free_udp_port()), "--timeout", "1", "--listen", "1.2", "--px4", px4},
+                    60s);
+  };
+  auto checks = [](const RunResult& r) {
+    std::map<std::string, nlohmann::json> by_id;
+    for (const auto& j : json_lines(r.out))
+      if (j.value("type", "") == "check") by_id[j["check"]] = j;
+    return by_id;
+  };
+  auto found = checks(doctor(dir));
+  EXPECT_EQ(found["px4-build"]["result"], "warn") << found["px4-build"].dump();
+  EXPECT_NE(found["px4-build"]["saw"].get<std::string>().find(dir), std::string::npos) << found["px4-build"].dump();
+  EXPECT_NE(found["px4-instance"]["result"], "fail") << found["px4-instance"].dump();
+  EXPECT_NE(found["px4-instance"]["saw"].get<std::string>().find("hitl sim --px4 takes instance"), std::string::npos)
+      << found["px4-instance"].dump();
+  EXPECT_EQ(found["px4-connected"]["result"], "skip");
+  auto missing = checks(doctor(temp_dir()));
+  EXPECT_EQ(missing["px4-build"]["result"], "fail") << missing["px4-build"].dump();
+  EXPECT_NE(missing["px4-build"]["saw"].get<std::string>().find("no bin/px4"), std::string::npos) << missing["px4-build"].dump();
+  auto bad = run_hitl({"doctor", "--px4-param", "NOT A PARAM"});
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--px4-param"), std::string::npos) << bad.err;
+}
+
 
 }  // namespace
 }  // namespace hitl::test

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <string>
@@ -238,6 +239,29 @@ TEST_F(Px4Flight, KillOfHitlLeavesNoPx4) {
   auto alive = [px4] { return process_running(px4); };
   while (alive() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(50ms);
   EXPECT_FALSE(alive()) << "PX4 " << px4 << " outlived hitl's SIGKILL";
+}
+
+TEST_F(Px4Flight, DoctorSeesTheSessionsPx4AndItsParameters) {
+  // A --px4 session with a parameter of the user's: doctor, given the same --px4-param, passes its
+  // four PX4 SITL checks and skips the VOXL2's own (no board), and the estimator check passes on
+  // what PX4 v1.16 sends at rest (CONST_POS_MODE, NaN range finder and airspeed ratios).
+  const std::string clients = std::to_string(free_udp_port());
+  Process sim({hitl_binary(), "sim", "--px4", px4_dir_, "--no-vio", "--clients", clients, "--px4-param", "COM_DISARM_PRFLT=-1"});
+  ASSERT_TRUE(sim.wait_for_stderr("PX4 SITL connected", 60s)) << sim.err();
+  std::this_thread::sleep_for(15s);  // EKF2 fuses GNSS after its checks (~10 s)
+  auto r = run_hitl({"--json", "doctor", "--no-vio", "--session-port", clients, "--px4", px4_dir_, "--px4-param",
+                     "COM_DISARM_PRFLT=-1"},
+                    90s);
+  std::map<std::string, std::string> result;
+  for (const auto& j : json_lines(r.out))
+    if (j.value("type", "") == "check") result[j["check"]] = j["result"];
+  for (const char* id : {"px4-build", "px4-instance", "px4-connected", "px4-params", "heartbeat", "estimator", "session"})
+    EXPECT_EQ(result[id], "pass") << id << "\n" << r.out;
+  for (const char* id : {"hil-mode", "dsp-hitl", "params-system", "actuator-flags", "vio-odometry"})
+    EXPECT_EQ(result[id], "skip") << id << "\n" << r.out;
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  sim.signal(SIGINT);
+  sim.wait(30s);
 }
 
 TEST_F(Px4Flight, HoverReportMergesPx4sOwnULogAgainstTheTruth) {

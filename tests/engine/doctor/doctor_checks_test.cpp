@@ -16,11 +16,11 @@ namespace {
 
 TEST(DoctorCatalog, ChecksAreUniqueGroupedAndInTheIssuesOrder) {
   const auto& checks = doctor_checks();
-  ASSERT_EQ(checks.size(), 26u);
+  ASSERT_EQ(checks.size(), 30u);
   std::set<std::string> ids;
   for (const auto& c : checks) EXPECT_TRUE(ids.insert(c.id).second) << c.id;
   const std::vector<std::string> groups = {group::kHost,     group::kLink,    group::kSensors, group::kParameters,
-                                           group::kEstimator, group::kArming, group::kVio,     group::kSimulator};
+                                           group::kEstimator, group::kArming, group::kVio,     group::kSimulator, group::kPx4};
   std::size_t g = 0;
   for (const auto& c : checks) {
     while (g < groups.size() && groups[g] != c.group) ++g;

@@ -48,6 +48,21 @@ TEST(DoctorEstimator, ConvergedNotConvergedRatios) {
   EXPECT_EQ(estimator_check(s).result, Verdict::Fail);
 }
 
+// What PX4 v1.16 SITL sends at rest on the ground, fusing GNSS: flags 0x03BF (CONST_POS_MODE with
+// the vehicle at rest, ekf_helper.cpp) and NaN for the range finder and airspeed it does not have.
+TEST(DoctorEstimator, Px4AtRestWithGnssIsConverged) {
+  EstimatorStatusSeen s = converged();
+  s.flags = 0x03BF;
+  s.hagl_ratio = std::nan("");
+  s.tas_ratio = std::nan("");
+  const auto r = estimator_check(s);
+  EXPECT_EQ(r.result, Verdict::Pass) << r.saw;
+  s.flags &= static_cast<uint16_t>(~mavlink::estimator_status::kPosHorizAbs);  // no GNSS: constant position is a fault
+  const auto lost = estimator_check(s);
+  EXPECT_EQ(lost.result, Verdict::Fail);
+  EXPECT_TRUE(has(lost.saw, "const pos mode")) << lost.saw;
+}
+
 SysStatusSeen sys_status(bool ready) {
   namespace b = mavlink::sys_status;
   SysStatusSeen s;

@@ -227,34 +227,3 @@ TEST(Px4Instance, PortsAndBusyInstancesAreNamed) {
 
 }  // namespace
 }  // namespace hitl::px4
-
-#include "engine/model/x500_defaults.h"
-#include "engine/px4/vehicle_params.h"
-
-namespace hitl::px4 {
-namespace {
-
-TEST(VehicleParams, TheX500sGeometryAndHoverAsDocsSimMdGivesThem) {
-  std::map<std::string, std::string> p;
-  for (const auto& q : vehicle_px4_params(model::x500_vehicle_config(), model::default_world_config().gravity_m_s2))
-    p[q.name] = q.value;
-  EXPECT_EQ(p["CA_ROTOR_COUNT"], "4");
-  // docs/sim.md: rotor 0 front right CCW, 1 back left CCW, 2 front left CW, 3 back right CW.
-  EXPECT_EQ(p["CA_ROTOR0_PX"], "0.174");
-  EXPECT_EQ(p["CA_ROTOR0_PY"], "0.174");
-  EXPECT_EQ(p["CA_ROTOR0_KM"], "0.05");
-  EXPECT_EQ(p["CA_ROTOR1_PX"], "-0.174");
-  EXPECT_EQ(p["CA_ROTOR1_PY"], "-0.174");
-  EXPECT_EQ(p["CA_ROTOR1_KM"], "0.05");
-  EXPECT_EQ(p["CA_ROTOR2_PX"], "0.174");
-  EXPECT_EQ(p["CA_ROTOR2_PY"], "-0.174");
-  EXPECT_EQ(p["CA_ROTOR2_KM"], "-0.05");
-  EXPECT_EQ(p["CA_ROTOR3_PX"], "-0.174");
-  EXPECT_EQ(p["CA_ROTOR3_PY"], "0.174");
-  EXPECT_EQ(p["CA_ROTOR3_KM"], "-0.05");
-  EXPECT_NEAR(std::stod(p["MPC_THR_HOVER"]), 0.59, 0.005);
-  EXPECT_EQ(p["THR_MDL_FAC"], "1");
-}
-
-}  // namespace
-}  // namespace hitl::px4

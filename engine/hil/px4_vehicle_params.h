@@ -9,7 +9,7 @@
 #include "engine/model/vehicle_config.h"
 #include "engine/px4/px4_process.h"
 
-namespace hitl::px4 {
+namespace hitl::hil {
 
 /// PX4's yaw allocation ratio for each rotor, signed by its turning (PX4's x500 airframe's value;
 /// the allocation's ratio, not the rotor's drag physics).
@@ -19,6 +19,6 @@ inline constexpr double kPx4RotorMomentRatio = 0.05;
 /// (hover thrust over full thrust: PX4's normalised thrust with THR_MDL_FAC 1) and THR_MDL_FAC 1
 /// (thrust grows with the square of the command, as the model's rotors). The x500: 0.174 m arms,
 /// hover 0.59.
-std::vector<Px4Param> vehicle_px4_params(const model::VehicleConfig& vehicle, double gravity_m_s2);
+std::vector<px4::Px4Param> px4_vehicle_params(const model::VehicleConfig& vehicle, double gravity_m_s2);
 
-}  // namespace hitl::px4
+}  // namespace hitl::hil

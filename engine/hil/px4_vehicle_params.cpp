@@ -1,10 +1,10 @@
-#include "engine/px4/vehicle_params.h"
+#include "engine/hil/px4_vehicle_params.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <string>
 
-namespace hitl::px4 {
+namespace hitl::hil {
 namespace {
 
 std::string number(double v) {
@@ -15,8 +15,8 @@ std::string number(double v) {
 
 }  // namespace
 
-std::vector<Px4Param> vehicle_px4_params(const model::VehicleConfig& vehicle, double gravity_m_s2) {
-  std::vector<Px4Param> out;
+std::vector<px4::Px4Param> px4_vehicle_params(const model::VehicleConfig& vehicle, double gravity_m_s2) {
+  std::vector<px4::Px4Param> out;
   out.push_back({"CA_ROTOR_COUNT", std::to_string(vehicle.rotors.size())});
   double full_thrust_N = 0;
   for (std::size_t i = 0; i < vehicle.rotors.size(); ++i) {
@@ -38,4 +38,4 @@ std::vector<Px4Param> vehicle_px4_params(const model::VehicleConfig& vehicle, do
   return out;
 }
 
-}  // namespace hitl::px4
+}  // namespace hitl::hil
