@@ -131,6 +131,21 @@ std::string explain_parse_error(CLI::App& app, const CLI::ParseError& error, con
              command_path(chain) + " --help lists them)";
     }
   }
+  // No command where one is needed (`hitl`, `hitl params`): the commands there, with what each does.
+  if (dynamic_cast<const CLI::RequiredError*>(&error) != nullptr && chain.back()->get_require_subcommand_min() > 0 &&
+      chain.back()->get_subcommands().empty()) {
+    std::string text = command_path(chain) + ": a command is needed:";
+    std::size_t width = 0;
+    std::vector<CLI::App*> shown;
+    for (auto* sub : subcommands_of(chain.back()))
+      if (!sub->get_group().empty()) shown.push_back(sub);  // an empty group hides a command from help
+    for (auto* sub : shown) width = std::max(width, sub->get_name().size());
+    for (auto* sub : shown) {
+      const std::string& name = sub->get_name();
+      text += "\n  " + name + std::string(width - name.size() + 2, ' ') + sub->get_description();
+    }
+    return text + "\n(" + command_path(chain) + " COMMAND --help for its options)";
+  }
   // A value its option's check refused: said as the other mistakes are, with the command it was typed for.
   if (dynamic_cast<const CLI::ValidationError*>(&error) != nullptr) return command_path(chain) + ": " + what;
   return {};

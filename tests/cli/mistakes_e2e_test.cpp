@@ -70,6 +70,17 @@ TEST(Mistakes, ConfigErrorsNameFileLineAndToml) {
   says({"--config", file, "sim"}, "TOML");
 }
 
+TEST(Mistakes, NoCommandListsTheCommands) {
+  // `hitl` or `hitl params` alone: the commands there, each with what it does, as git does.
+  says({}, "hitl: a command is needed:");
+  says({}, "  sim ");
+  says({}, "  doctor ");
+  says({"params"}, "hitl params: a command is needed:");
+  says({"params"}, "  reset ");
+  says({"fly"}, "  takeoff ");
+  says({"board"}, "hitl board: a command is needed:");
+}
+
 TEST(Mistakes, HelpWithoutParserInternals) {
   const auto r = test::run_hitl({"sim", "--help"});
   EXPECT_EQ(r.exit_code, 0);
