@@ -4,7 +4,9 @@
 // against the simulator's truth. No board, no network, no configuration. Ctrl-C stops it all.
 // --tui: the sim dashboard (docs/tui.md) on the flight, in real time unless --speed says otherwise.
 #include <unistd.h>
+#include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -55,6 +57,31 @@ Expected<std::string> demo_directory() {
     return Error::unavailable("cannot make a directory for the recording under " + std::filesystem::temp_directory_path().string() +
                               ": " + std::strerror(errno) + " (--record FILE.tlog, or --no-report)");
   return tmpl;
+}
+
+/// The demo folders kept under $TMPDIR: each demo removes this user's older ones beyond these.
+constexpr std::size_t kDemoFoldersKept = 5;
+
+/// Removes this user's hitl-demo-XXXXXX folders under $TMPDIR beyond the newest kDemoFoldersKept
+/// (by modification time; `current` is always kept); how many went.
+std::size_t remove_old_demo_folders(const std::string& current) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<std::pair<fs::file_time_type, fs::path>> folders;
+  const std::string prefix = "hitl-demo-";
+  for (fs::directory_iterator it(fs::temp_directory_path(ec), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() != prefix.size() + 6 || name.rfind(prefix, 0) != 0 || it->path() == fs::path(current)) continue;
+    struct stat st{};
+    if (::lstat(it->path().c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::getuid()) continue;
+    folders.emplace_back(fs::last_write_time(it->path(), ec), it->path());
+  }
+  if (folders.size() < kDemoFoldersKept) return 0;
+  std::sort(folders.begin(), folders.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::size_t removed = 0;
+  for (std::size_t i = kDemoFoldersKept - 1; i < folders.size(); ++i)
+    if (fs::remove_all(folders[i].second, ec) > 0 && !ec) ++removed;
+  return removed;
 }
 
 /// A loopback UDP port nobody uses right now (the OS picks it).
@@ -190,6 +217,10 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
         return exit_code(dir.error());
       }
       o.record_path = *dir + "/demo.tlog";
+      if (const std::size_t removed = remove_old_demo_folders(*dir); removed > 0)
+        log_info(g, "hitl demo: removed " + std::to_string(removed) + " older demo folder" + (removed == 1 ? "" : "s") + " under " +
+                        std::filesystem::temp_directory_path().string() + " (the newest " + std::to_string(kDemoFoldersKept) +
+                        " are kept; --record FILE.tlog keeps yours)");
     }
     if (o.report_path.empty()) o.report_path = default_report_path(o.record_path);
     session.record_path = o.record_path;

@@ -1,7 +1,12 @@
 // hitl demo: the README's first command flies the square on an emulated board and reports.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "tests/support/json_lines.h"
@@ -41,6 +46,39 @@ TEST(DemoE2E, StoppedEarlyReportsNotApplicableNotZeros) {
   EXPECT_NE(out.find("tracking error against truth   RMS n/a, max n/a (0 samples)"), std::string::npos) << out;
   EXPECT_NE(out.find("horizontal RMS n/a"), std::string::npos) << out;
   EXPECT_EQ(out.find("RMS 0.00 m"), std::string::npos) << out;
+}
+
+// Each demo under $TMPDIR leaves its folder (its page is there); the older ones beyond the newest 5
+// of this user go, and nothing else in $TMPDIR is touched.
+TEST(DemoE2E, KeepsTheNewestFiveDemoFolders) {
+  namespace fs = std::filesystem;
+  const fs::path tmp = test::temp_dir();
+  for (int i = 0; i < 6; ++i) {
+    const fs::path old = tmp / ("hitl-demo-old00" + std::to_string(i));
+    fs::create_directories(old);
+    std::ofstream(old / "demo.tlog") << "x";
+    fs::last_write_time(old, fs::file_time_type::clock::now() - std::chrono::hours(10 - i));  // old000 the oldest
+  }
+  fs::create_directories(tmp / "hitl-demo-mine-not");  // not a demo's name
+  std::ofstream(tmp / "hitl-demo-abcdef") << "a file, not a folder";
+  const char* before = std::getenv("TMPDIR");
+  const std::string saved = before ? before : "";
+  ::setenv("TMPDIR", tmp.c_str(), 1);
+  test::Process demo({test::hitl_binary(), "demo", "--speed", "1"});
+  if (saved.empty()) ::unsetenv("TMPDIR");
+  else ::setenv("TMPDIR", saved.c_str(), 1);
+  ASSERT_TRUE(demo.wait_for_stderr("Ctrl-C stops everything", std::chrono::seconds(20))) << demo.err();
+  demo.signal(SIGINT);
+  demo.wait(std::chrono::seconds(30));
+  EXPECT_NE(demo.err().find("removed 2 older demo folders under " + tmp.string()), std::string::npos) << demo.err();
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(tmp)) left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_FALSE(fs::exists(tmp / "hitl-demo-old000"));
+  EXPECT_FALSE(fs::exists(tmp / "hitl-demo-old001"));
+  for (const char* kept : {"hitl-demo-old002", "hitl-demo-old005", "hitl-demo-mine-not", "hitl-demo-abcdef"})
+    EXPECT_TRUE(fs::exists(tmp / kept)) << kept;
+  EXPECT_EQ(left.size(), 7u);  // 4 old ones and the new demo's folder, and the two that are not demo folders
 }
 
 TEST(DemoE2E, ABadTrajectoryFileIsRefused) {
