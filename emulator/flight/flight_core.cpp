@@ -294,6 +294,14 @@ void FlightCore::step(std::uint64_t now_us) {
     return;
   }
 
+  // PX4 reports TAKEOFF only while its takeoff runs: left in the climb (a pilot switching to
+  // Position, Hold), the vehicle clear of the ground is IN_AIR from then on.
+  if (landed_state_ == LandedState::Takeoff && mode_ != FlightMode::Takeoff &&
+      takeoff_start_z_m_ - e.p_NED_m.z() >= kTakeoffGroundPhase_m) {
+    position_control_.freeze_horizontal_integral(false);
+    landed_state_ = LandedState::InAir;
+  }
+
   // Sticks take over from auto modes (COM_RC_OVERRIDE).
   if ((mode_ == FlightMode::Hold || mode_ == FlightMode::Land) && landed_state_ != LandedState::OnGround &&
       sticks_deflected_for_override()) {

@@ -121,6 +121,23 @@ Figures fly(std::uint64_t seed) {
   return f;
 }
 
+// PX4 reports TAKEOFF only while its takeoff runs: a pilot who switches to Position mode during the
+// climb (as hitl's trajectory pilot does) flies IN_AIR from then on, not "taking off" to the end.
+TEST(FlightClosedLoop, LeavingTakeoffInTheClimbIsInAir) {
+  SimLoop sim(3);
+  FlightCore& core = sim.core();
+  ASSERT_TRUE(sim.run_until([&] { return core.preflight_check().ready; }, 20.0));
+  ASSERT_EQ(core.arm().result, CommandResult::Accepted);
+  ASSERT_EQ(core.takeoff().result, CommandResult::Accepted);
+  ASSERT_TRUE(sim.run_until([&] { return sim.truth_height_m() > 1.0; }, 15.0));
+  EXPECT_EQ(core.landed_state(), LandedState::Takeoff);
+  EXPECT_EQ(core.set_mode(FlightMode::Position).result, CommandResult::Accepted);
+  sim.run_s(2.0);
+  EXPECT_EQ(core.landed_state(), LandedState::InAir);
+  EXPECT_EQ(core.land().result, CommandResult::Accepted);  // and it lands as from any flight
+  EXPECT_TRUE(sim.run_until([&] { return !core.armed(); }, 20.0));
+}
+
 TEST(FlightClosedLoop, EverySeedFliesTheCiScenario) {
   constexpr int kSeeds = 10;
   for (int seed = 1; seed <= kSeeds; ++seed) {
