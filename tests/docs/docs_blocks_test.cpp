@@ -193,6 +193,7 @@ void run_blocks(const std::string& doc) {
 
 TEST(DocsBlocks, ReadmeRunsAsWritten) { run_blocks("README.md"); }
 TEST(DocsBlocks, GuideRunsAsWritten) { run_blocks("docs/guide.md"); }
+TEST(DocsBlocks, ReplayRunsAsWritten) { run_blocks("docs/replay.md"); }
 
 }  // namespace
 }  // namespace hitl
