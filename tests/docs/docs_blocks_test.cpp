@@ -194,6 +194,7 @@ void run_blocks(const std::string& doc) {
 TEST(DocsBlocks, ReadmeRunsAsWritten) { run_blocks("README.md"); }
 TEST(DocsBlocks, GuideRunsAsWritten) { run_blocks("docs/guide.md"); }
 TEST(DocsBlocks, ReplayRunsAsWritten) { run_blocks("docs/replay.md"); }
+TEST(DocsBlocks, FaultsRunAsWritten) { run_blocks("docs/faults.md"); }
 
 }  // namespace
 }  // namespace hitl
