@@ -113,4 +113,10 @@ const std::atomic<bool>& stop_flag_on_signals() {
 
 bool stdout_is_tty() { return ::isatty(STDOUT_FILENO) == 1; }
 
+bool background_job_of_terminal() {
+  if (::isatty(STDERR_FILENO) != 1) return false;
+  const pid_t foreground = ::tcgetpgrp(STDERR_FILENO);
+  return foreground > 0 && foreground != ::getpgrp();
+}
+
 }  // namespace hitl::cli

@@ -66,5 +66,8 @@ int log_error(const std::string& command, const Error& error);
 const std::atomic<bool>& stop_flag_on_signals();
 
 bool stdout_is_tty();
+/// True when this process is a background job of the terminal its stderr goes to (`hitl target &`):
+/// its terminal's foreground process group is another (the shell's next command).
+bool background_job_of_terminal();
 
 }  // namespace hitl::cli

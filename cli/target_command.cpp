@@ -39,7 +39,9 @@ class TargetPrinter : public target::Board::Observer {
   void on_status(const target::BoardSnapshot& s) override {
     if (global_.json) {
       print_json_line(board_json(s, "status"));
-    } else if (!global_.quiet) {
+    } else if (!global_.quiet && !background_job_of_terminal()) {
+      // A background job (`hitl target &`) keeps its status lines to itself: they would bury the
+      // next command's output in the same terminal. Its events still show; fg brings the lines back.
       char buf[256];
       std::snprintf(buf, sizeof buf, "t %7.1f s  %s  %-8s %-10s alt %6.2f m  HIL_SENSOR %llu  ODOMETRY %llu  %s",
                     s.board_time_s, s.armed ? "ARMED   " : "disarmed", s.mode.c_str(), s.landed_state.c_str(), s.altitude_m,

@@ -12,6 +12,7 @@
 #include "engine/vehicle/params_file.h"
 #include "tests/support/mavlink_peer.h"
 #include "tests/support/process.h"
+#include "tests/support/tmux.h"
 
 namespace hitl {
 namespace {
@@ -175,6 +176,28 @@ TEST_F(TargetE2E, MalformedInputIsCountedNeverFatal) {
   const auto j = nlohmann::json::parse(lines.back());
   EXPECT_EQ(j["type"], "summary");
   EXPECT_GT(j["malformed"].get<int>(), 10);
+}
+
+// `hitl target &` then another hitl command in one terminal (the README's way): the background
+// board keeps its once-a-second status lines to itself, so the next command's output is readable;
+// in the foreground it shows them.
+TEST(TargetInATerminal, ABackgroundJobKeepsItsStatusLinesToItself) {
+  const std::string tmux = test::tmux_path();
+  if (tmux.empty()) GTEST_SKIP() << "tmux is not installed (scripts/install-deps.sh --test installs it)";
+  auto board = [](const std::string& how) {
+    return test::shell_quoted(test::hitl_binary()) + " target --bind 127.0.0.1 --hil-port " + std::to_string(test::free_udp_port()) +
+           " --gcs-port " + std::to_string(test::free_udp_port()) + " --vio-port 0 --lockstep" + how;
+  };
+  test::Tmux t(tmux, "target-bg");
+  t.start("bash --norc --noprofile -i");
+  std::string screen;
+  t.keys({board(" & sleep 3.5; kill %1; echo back\"\"-done"), "Enter"});
+  ASSERT_TRUE(t.until([](const std::string& s) { return s.find("back-done\n") != std::string::npos; }, 20s, &screen)) << screen;
+  EXPECT_NE(screen.find("EMULATED"), std::string::npos) << screen;
+  EXPECT_EQ(screen.find("HIL_SENSOR 0"), std::string::npos) << screen;  // no status line
+  t.keys({"clear; timeout -s INT 3.5 " + board("") + "; echo front\"\"-done", "Enter"});
+  ASSERT_TRUE(t.until([](const std::string& s) { return s.find("front-done\n") != std::string::npos; }, 20s, &screen)) << screen;
+  EXPECT_NE(screen.find("HIL_SENSOR 0"), std::string::npos) << screen;
 }
 
 }  // namespace
