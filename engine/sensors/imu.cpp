@@ -1,11 +1,17 @@
 #include "engine/sensors/imu.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/frames/frames.h"
 #include "engine/model/atmosphere.h"
 
 namespace hitl::sensors {
+
+void quantise(Eigen::Vector3d& v, double resolution) {
+  if (!(resolution > 0.0)) return;
+  for (int i = 0; i < 3; ++i) v[i] = std::round(v[i] / resolution) * resolution;
+}
 
 bool saturate(Eigen::Vector3d& v, double range) {
   if (!(range > 0.0)) return false;  // a config built in code without a range: no limit
@@ -44,6 +50,8 @@ ImuSample Imu::sample(const model::VehicleState& state, double t_s) {
   const Eigen::Vector3d gyro_FRD_rad_s = frames::flu_to_frd(w);
   s.accel_FRD_m_s2 = accel_FRD_m_s2 + noise_scale_ * (accel_noise_.apply(accel_FRD_m_s2, dt_s) - accel_FRD_m_s2);
   s.gyro_FRD_rad_s = gyro_FRD_rad_s + noise_scale_ * (gyro_noise_.apply(gyro_FRD_rad_s, dt_s) - gyro_FRD_rad_s);
+  quantise(s.accel_FRD_m_s2, config_.accel_resolution_m_s2);
+  quantise(s.gyro_FRD_rad_s, config_.gyro_resolution_rad_s);
   if (saturate(s.accel_FRD_m_s2, config_.accel_range_m_s2)) ++saturation_.accel;
   if (saturate(s.gyro_FRD_rad_s, config_.gyro_range_rad_s)) ++saturation_.gyro;
   s.temperature_degC = model::isa_temperature_degC(world_.atmosphere, world_.home.alt_m + state.p_ENU_m.z());

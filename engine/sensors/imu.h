@@ -1,6 +1,8 @@
 // Accelerometer + gyroscope at the IMU mount (x500: base origin).
-//   accel_FRD = sat( FRD( f + alpha x r + w x (w x r) ) + noise )    f: specific force at the base
-//   gyro_FRD  = sat( FRD( w ) + noise )                              origin, r = mount (FLU)
+//   accel_FRD = sat( q( noise( FRD( f + alpha x r + w x (w x r) ) ) ) )   f: specific force at the base
+//   gyro_FRD  = sat( q( noise( FRD( w ) ) ) )                           origin, r = mount (FLU)
+// noise(): inertial_noise.h (scale and cross-axis error, biases, white noise); q() rounds each axis
+// to the part's LSB (`*_resolution`, 0: not rounded), as its register holds whole counts.
 // f and w are the means over the physics step (VehicleState), as an IMU's output filter averages
 // between two readings. sat() clips each axis at the configured full scale, as the sensor's 16-bit
 // register does (the largest count, 32767/32768 of the range: ICM-42688 at +-16 g reads at most
@@ -46,6 +48,9 @@ class Imu {
   ImuSaturation saturation_;
   double noise_scale_ = 1.0;
 };
+
+/// Rounds each axis to a whole multiple of `resolution` (one LSB); 0 leaves it.
+void quantise(Eigen::Vector3d& v, double resolution);
 
 /// Clips each axis to +-the largest 16-bit count of `range` (range * 32767 / 32768); true when any was.
 /// A range of 0 (a config built in code without one) clips nothing.
