@@ -76,6 +76,13 @@ void vehicle_fields(V& v, VehicleConfig& c) {
       i.number("gyro_resolution_rad_s", sc.imu.gyro_resolution_rad_s, closed(0.0, 1.0));
       i.object("gyro", [&](auto& n) { inertial_noise_fields(n, sc.imu.gyro); });
       i.object("accel", [&](auto& n) { inertial_noise_fields(n, sc.imu.accel); });
+      i.object("vibration", [&](auto& vib) {
+        VibrationConfig& vc = sc.imu.vibration;
+        vib.number("imbalance_m_s2_per_rad2_s2", vc.imbalance_m_s2_per_rad2_s2, closed(0.0, 1e-2));
+        vib.number("blade_pass_m_s2_per_rad2_s2", vc.blade_pass_m_s2_per_rad2_s2, closed(0.0, 1e-2));
+        vib.number("gyro_imbalance_rad_s_per_rad2_s2", vc.gyro_imbalance_rad_s_per_rad2_s2, closed(0.0, 1e-3));
+        vib.integer("blades", vc.blades, closed(1, 8));
+      });
     });
     s.object("mag", [&](auto& m) {
       m.number("rate_hz", sc.mag.rate_hz, closed(0.1, 10000.0));

@@ -71,6 +71,17 @@ struct InertialNoiseConfig {
   double cross_axis_sigma = 0.0;         ///< per off-diagonal cross-axis sensitivity drawn at start [fraction]
 };
 
+/// What the rotors shake the IMU with (0: off, the default). Each rotor i at speed w_i, phase
+/// phi_i = integral of w_i (its imbalance turning with it), sized as an imbalance force grows, w^2:
+///   accel_FLU += imbalance w^2 (cos phi, sin phi, 0) + blade_pass w^2 (0, 0, cos(blades phi))
+///   gyro_FLU  += gyro_imbalance w^2 (cos phi, sin phi, 0)
+struct VibrationConfig {
+  double imbalance_m_s2_per_rad2_s2 = 0.0;       ///< in the rotor plane at the rotor's frequency
+  double blade_pass_m_s2_per_rad2_s2 = 0.0;      ///< along the rotor axis at blades x the rotor's frequency
+  double gyro_imbalance_rad_s_per_rad2_s2 = 0.0; ///< about the in-plane axes at the rotor's frequency
+  int blades = 2;
+};
+
 struct ImuConfig {
   double rate_hz = 0.0;
   Eigen::Vector3d position_FLU_m = Eigen::Vector3d::Zero();  ///< IMU mount from base origin (axes = body)
@@ -80,6 +91,7 @@ struct ImuConfig {
   double gyro_resolution_rad_s = 0.0;  ///< one LSB (0: not quantised)
   InertialNoiseConfig gyro;   ///< rad/s
   InertialNoiseConfig accel;  ///< m/s^2
+  VibrationConfig vibration;  ///< the airframe's, from the rotors (off by default)
 };
 
 struct MagConfig {

@@ -30,11 +30,13 @@ Imu::Imu(const model::ImuConfig& config, const model::WorldConfig& world, std::u
     : config_(config),
       world_(world),
       accel_noise_(config.accel, config.rate_hz, seed, "imu.accel"),
-      gyro_noise_(config.gyro, config.rate_hz, seed, "imu.gyro") {}
+      gyro_noise_(config.gyro, config.rate_hz, seed, "imu.gyro"),
+      vibration_(config.vibration, seed) {}
 
 void Imu::reset() {
   accel_noise_.reset();
   gyro_noise_.reset();
+  vibration_.reset();
   last_t_s_ = -1.0;
 }
 
@@ -43,11 +45,17 @@ ImuSample Imu::sample(const model::VehicleState& state, double t_s) {
   const Eigen::Vector3d& r_FLU_m = config_.position_FLU_m;
   const Eigen::Vector3d& w = state.w_step_mean_FLU_rad_s;
   // Specific force at the mount, FLU: lever-arm terms of a rigid body.
-  const Eigen::Vector3d f_FLU = state.specific_force_FLU_m_s2 + state.alpha_FLU_rad_s2.cross(r_FLU_m) + w.cross(w.cross(r_FLU_m));
+  Eigen::Vector3d f_FLU = state.specific_force_FLU_m_s2 + state.alpha_FLU_rad_s2.cross(r_FLU_m) + w.cross(w.cross(r_FLU_m));
+  Eigen::Vector3d w_sensed_FLU = w;
+  if (vibration_.enabled()) {
+    const Shake shake = vibration_.sample(state.rotor_speed_rad_s, dt_s);
+    f_FLU += shake.accel_FLU_m_s2;
+    w_sensed_FLU += shake.gyro_FLU_rad_s;
+  }
   ImuSample s;
   s.time_s = t_s;
   const Eigen::Vector3d accel_FRD_m_s2 = frames::flu_to_frd(f_FLU);
-  const Eigen::Vector3d gyro_FRD_rad_s = frames::flu_to_frd(w);
+  const Eigen::Vector3d gyro_FRD_rad_s = frames::flu_to_frd(w_sensed_FLU);
   s.accel_FRD_m_s2 = accel_FRD_m_s2 + noise_scale_ * (accel_noise_.apply(accel_FRD_m_s2, dt_s) - accel_FRD_m_s2);
   s.gyro_FRD_rad_s = gyro_FRD_rad_s + noise_scale_ * (gyro_noise_.apply(gyro_FRD_rad_s, dt_s) - gyro_FRD_rad_s);
   quantise(s.accel_FRD_m_s2, config_.accel_resolution_m_s2);

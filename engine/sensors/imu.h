@@ -1,6 +1,7 @@
 // Accelerometer + gyroscope at the IMU mount (x500: base origin).
 //   accel_FRD = sat( q( noise( FRD( f + alpha x r + w x (w x r) ) ) ) )   f: specific force at the base
 //   gyro_FRD  = sat( q( noise( FRD( w ) ) ) )                           origin, r = mount (FLU)
+// The rotors' vibration (airframe_vibration.h, off by default) adds to f and w before the noise.
 // noise(): inertial_noise.h (scale and cross-axis error, biases, white noise); q() rounds each axis
 // to the part's LSB (`*_resolution`, 0: not rounded), as its register holds whole counts.
 // f and w are the means over the physics step (VehicleState), as an IMU's output filter averages
@@ -15,6 +16,7 @@
 #include "engine/model/vehicle_config.h"
 #include "engine/model/vehicle_state.h"
 #include "engine/model/world_config.h"
+#include "engine/sensors/airframe_vibration.h"
 #include "engine/sensors/inertial_noise.h"
 #include "engine/sensors/samples.h"
 
@@ -44,6 +46,7 @@ class Imu {
   model::WorldConfig world_;
   InertialNoise accel_noise_;
   InertialNoise gyro_noise_;
+  AirframeVibration vibration_;
   double last_t_s_ = -1.0;
   ImuSaturation saturation_;
   double noise_scale_ = 1.0;

@@ -18,6 +18,9 @@ InertialNoise::InertialNoise(const model::InertialNoiseConfig& config, double ra
       stream_(std::move(stream)),
       rng_(seed, stream_),
       flicker_rng_(seed, stream_ + ".flicker") {
+  const double flicker_sigma = bias_instability_process_sigma(config.bias_instability);
+  for (std::size_t k = 0; k < flicker_random_walk_.size(); ++k)
+    flicker_random_walk_[k] = model::random_walk_for_stationary_sigma(flicker_sigma, kBiasInstabilityTimes_s[k]);
   reset();
 }
 
@@ -47,11 +50,8 @@ Eigen::Vector3d InertialNoise::apply(const Eigen::Vector3d& truth, double dt_s) 
     }
     double flicker = 0.0;
     if (config_.bias_instability != 0.0) {
-      const double sigma = bias_instability_process_sigma(config_.bias_instability);
       for (std::size_t k = 0; k < flicker_.size(); ++k) {
-        const double tau_s = kBiasInstabilityTimes_s[k];
-        flicker_[k][i] = model::gauss_markov_step(flicker_[k][i], dt_s, tau_s,
-                                                  model::random_walk_for_stationary_sigma(sigma, tau_s), flicker_rng_);
+        flicker_[k][i] = model::gauss_markov_step(flicker_[k][i], dt_s, kBiasInstabilityTimes_s[k], flicker_random_walk_[k], flicker_rng_);
         flicker += flicker_[k][i];
       }
     }

@@ -54,6 +54,7 @@ class InertialNoise {
   Eigen::Vector3d bias_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d turn_on_bias_ = Eigen::Vector3d::Zero();
   std::array<Eigen::Vector3d, kBiasInstabilityTimes_s.size()> flicker_{};
+  std::array<double, kBiasInstabilityTimes_s.size()> flicker_random_walk_{};  ///< each process's driving density
   Eigen::Matrix3d misalignment_ = Eigen::Matrix3d::Identity();
 };
 

@@ -122,3 +122,27 @@ TEST(AllanE2E, AFlickerFloorReadsBackAsTheBiasInstability) {
 
 }  // namespace
 }  // namespace hitl
+
+namespace hitl {
+namespace {
+
+TEST(AllanE2E, RefusesWhatItCannotRead) {
+  const auto no_tlog = test::run_hitl({"inspect", "--port", "1", "--allan"});
+  EXPECT_EQ(no_tlog.exit_code, 2);
+  EXPECT_NE(no_tlog.err.find("--allan reads a recording: give --tlog FILE"), std::string::npos) << no_tlog.err;
+  const std::string dir = test::temp_dir();
+  std::ofstream(dir + "/empty.tlog").flush();
+  const auto empty = test::run_hitl({"inspect", "--tlog", dir + "/empty.tlog", "--allan"});
+  EXPECT_EQ(empty.exit_code, 2);
+  EXPECT_NE(empty.err.find("empty.tlog' is empty"), std::string::npos) << empty.err;
+  std::ofstream(dir + "/text.tlog") << "not a telemetry log at all, just some words to be read as records";
+  const auto text = test::run_hitl({"inspect", "--tlog", dir + "/text.tlog", "--allan"});
+  EXPECT_EQ(text.exit_code, 2);
+  EXPECT_NE(text.err.find("text.tlog'"), std::string::npos) << text.err;
+  const auto with_show = test::run_hitl({"inspect", "--tlog", dir + "/text.tlog", "--allan", "--show", "HEARTBEAT"});
+  EXPECT_EQ(with_show.exit_code, 2);
+  EXPECT_NE(with_show.err.find("does not go with"), std::string::npos) << with_show.err;
+}
+
+}  // namespace
+}  // namespace hitl
