@@ -9,6 +9,7 @@
 
 #include "base/mavlink/enums.h"
 #include "cli/commands.h"
+#include "cli/inspect_allan.h"
 #include "cli/number_check.h"
 #include "cli/traffic_table.h"
 #include "cli/value_types.h"
@@ -42,6 +43,7 @@ struct InspectOptions {
   std::string signing_key;
   bool require_signed = false;
   bool tui = false;  ///< --tui: the dashboard's data paths, messages and link panels (docs/tui.md)
+  bool allan = false;  ///< --allan: the IMU's Allan deviation of a --tlog (inspect_allan.h)
 };
 
 nlohmann::json frame_json(const mavlink::Frame& f, const std::string& source, int64_t t_ns) {
@@ -196,6 +198,13 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   if (sources != 1) {
     return log_error(cmd, Error::usage("give exactly one source: --port P, --connect udp:HOST:PORT or --tlog FILE"));
   }
+  if (opt.allan) {
+    if (opt.tlog.empty()) return log_error(cmd, Error::usage("--allan reads a recording: give --tlog FILE"));
+    if (opt.tui || opt.follow || !opt.show.empty() || !opt.expect.empty() || !opt.record.empty() || opt.duration_s > 0 || opt.count > 0)
+      return log_error(cmd, Error::usage("--allan reads the whole --tlog on its own: it does not go with --tui, --follow, --show, "
+                                         "--expect, --record, --duration or --count"));
+    return run_inspect_allan(global, opt.tlog);
+  }
   auto messages = load_messages(global);
   if (!messages) {
     log_error(cmd, messages.error().message);
@@ -322,6 +331,7 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
       "  hitl inspect --port 14570 --duration 5 --expect ODOMETRY=250   # the spec's Phase 1 check\n"
       "  hitl inspect --connect udp:192.168.101.2:14558 --show HEARTBEAT,ATTITUDE\n"
       "  hitl inspect --tlog flight.tlog --json\n"
+      "  hitl inspect --tlog rest.tlog --allan           # the IMU's noise density and bias instability\n"
       "Exit: 0 ok (every --expect met), 1 an expectation failed, 2 bad usage or the source cannot be opened.");
   auto* src = sub->add_option_group("Source", "exactly one of --port, --connect, --tlog");
   src->add_option("--port", opt->port, "Listen passively on this UDP port (e.g. 14570 for ODOMETRY)")
@@ -346,6 +356,9 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
   sub->add_flag("--tui", opt->tui,
                 "The live dashboard (docs/tui.md): a row per message (rate against --expect, jitter, max gap), "
                 "STATUSTEXT, per-source loss; q quits. Without a terminal: the summary lines");
+  sub->add_flag("--allan", opt->allan,
+                "With --tlog of a vehicle at rest: the overlapping Allan deviation of its IMU (HIL_SENSOR gyro and accel, "
+                "per axis), each curve's noise_density and bias_instability (docs/inspect.md)");
   sub->add_option("--duration", opt->duration_s, "Stop after this many seconds (tlog: of log time)")
       ->check(positive_number())
       ->type_name("S");

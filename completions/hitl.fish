@@ -107,6 +107,7 @@ complete -c hitl -n '__hitl_at "inspect"' -l record -r -f -a '(__fish_complete_s
 complete -c hitl -n '__hitl_at "inspect"' -l show -r -f -a '(__fish_append , $__hitl_messages)' -d 'Print decoded fields of these messages, enums by name, a line each'
 complete -c hitl -n '__hitl_at "inspect"' -l follow -d 'With --show: print every matching message as it arrives'
 complete -c hitl -n '__hitl_at "inspect"' -l tui -d 'The live dashboard'
+complete -c hitl -n '__hitl_at "inspect"' -l allan -d 'With --tlog of a vehicle at rest: the overlapping Allan deviation of its IMU'
 complete -c hitl -n '__hitl_at "inspect"' -l duration -r -f -d 'Stop after this many seconds'
 complete -c hitl -n '__hitl_at "inspect"' -l count -r -f -d 'Stop after N messages'
 complete -c hitl -n '__hitl_at "inspect"' -l expect -r -f -a '(__hitl_message_rates)' -d 'Rates the link must carry'

@@ -19,6 +19,9 @@ void inertial_noise_fields(V& v, InertialNoiseConfig& n) {
   v.number("random_walk", n.random_walk, kNonNegative);
   v.number("bias_correlation_time_s", n.bias_correlation_time_s, kPositive);
   v.number("turn_on_bias_sigma", n.turn_on_bias_sigma, kNonNegative);
+  v.number("bias_instability", n.bias_instability, kNonNegative);
+  v.number("scale_error_sigma", n.scale_error_sigma, closed(0.0, 0.5));
+  v.number("cross_axis_sigma", n.cross_axis_sigma, closed(0.0, 0.5));
 }
 
 template <class V>
@@ -69,8 +72,17 @@ void vehicle_fields(V& v, VehicleConfig& c) {
       i.vec3("position_FLU_m", sc.imu.position_FLU_m, closed(-10.0, 10.0));
       i.number("accel_range_m_s2", sc.imu.accel_range_m_s2, kPositive);
       i.number("gyro_range_rad_s", sc.imu.gyro_range_rad_s, kPositive);
+      i.number("accel_resolution_m_s2", sc.imu.accel_resolution_m_s2, closed(0.0, 10.0));
+      i.number("gyro_resolution_rad_s", sc.imu.gyro_resolution_rad_s, closed(0.0, 1.0));
       i.object("gyro", [&](auto& n) { inertial_noise_fields(n, sc.imu.gyro); });
       i.object("accel", [&](auto& n) { inertial_noise_fields(n, sc.imu.accel); });
+      i.object("vibration", [&](auto& vib) {
+        VibrationConfig& vc = sc.imu.vibration;
+        vib.number("imbalance_m_s2_per_rad2_s2", vc.imbalance_m_s2_per_rad2_s2, closed(0.0, 1e-2));
+        vib.number("blade_pass_m_s2_per_rad2_s2", vc.blade_pass_m_s2_per_rad2_s2, closed(0.0, 1e-2));
+        vib.number("gyro_imbalance_rad_s_per_rad2_s2", vc.gyro_imbalance_rad_s_per_rad2_s2, closed(0.0, 1e-3));
+        vib.integer("blades", vc.blades, closed(1, 8));
+      });
     });
     s.object("mag", [&](auto& m) {
       m.number("rate_hz", sc.mag.rate_hz, closed(0.1, 10000.0));

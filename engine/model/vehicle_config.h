@@ -58,12 +58,28 @@ struct LandingGearConfig {
 };
 
 /// A three-axis inertial-type noise: white noise + Gauss-Markov bias random walk + turn-on bias
-/// (the Gazebo IMU plugin's model). Units per sensor: gyro rad/s, accel m/s^2, mag gauss.
+/// (the Gazebo IMU plugin's model), a flicker-like bias instability, and a scale and cross-axis
+/// error drawn at start. Units per sensor: gyro rad/s, accel m/s^2, mag gauss.
 struct InertialNoiseConfig {
   double noise_density = 0.0;            ///< white noise [unit/sqrt(Hz)]; sample sigma = density * sqrt(rate)
   double random_walk = 0.0;              ///< bias diffusion [unit/s/sqrt(Hz)]
   double bias_correlation_time_s = 0.0;  ///< bias decays with this time constant
   double turn_on_bias_sigma = 0.0;       ///< constant bias per axis drawn at start [unit]
+  /// IEEE 952 bias instability B [unit]: the Allan deviation's flat floor is 0.664 B (0: none).
+  double bias_instability = 0.0;
+  double scale_error_sigma = 0.0;        ///< per-axis scale factor error drawn at start [fraction]
+  double cross_axis_sigma = 0.0;         ///< per off-diagonal cross-axis sensitivity drawn at start [fraction]
+};
+
+/// What the rotors shake the IMU with (0: off, the default). Each rotor i at speed w_i, phase
+/// phi_i = integral of w_i (its imbalance turning with it), sized as an imbalance force grows, w^2:
+///   accel_FLU += imbalance w^2 (cos phi, sin phi, 0) + blade_pass w^2 (0, 0, cos(blades phi))
+///   gyro_FLU  += gyro_imbalance w^2 (cos phi, sin phi, 0)
+struct VibrationConfig {
+  double imbalance_m_s2_per_rad2_s2 = 0.0;       ///< in the rotor plane at the rotor's frequency
+  double blade_pass_m_s2_per_rad2_s2 = 0.0;      ///< along the rotor axis at blades x the rotor's frequency
+  double gyro_imbalance_rad_s_per_rad2_s2 = 0.0; ///< about the in-plane axes at the rotor's frequency
+  int blades = 2;
 };
 
 struct ImuConfig {
@@ -71,8 +87,11 @@ struct ImuConfig {
   Eigen::Vector3d position_FLU_m = Eigen::Vector3d::Zero();  ///< IMU mount from base origin (axes = body)
   double accel_range_m_s2 = 0.0;  ///< full scale per axis: readings saturate here (x500: +-16 g)
   double gyro_range_rad_s = 0.0;  ///< full scale per axis (x500: +-2000 deg/s)
+  double accel_resolution_m_s2 = 0.0;  ///< one LSB: readings are rounded to it (0: not quantised)
+  double gyro_resolution_rad_s = 0.0;  ///< one LSB (0: not quantised)
   InertialNoiseConfig gyro;   ///< rad/s
   InertialNoiseConfig accel;  ///< m/s^2
+  VibrationConfig vibration;  ///< the airframe's, from the rotors (off by default)
 };
 
 struct MagConfig {

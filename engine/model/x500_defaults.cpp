@@ -134,7 +134,10 @@ double total_mass_kg(const VehicleConfig& config) {
 VehicleConfig with_noise_disabled(VehicleConfig c) {
   for (InertialNoiseConfig* n : {&c.sensors.imu.gyro, &c.sensors.imu.accel, &c.sensors.mag.noise}) {
     n->noise_density = n->random_walk = n->turn_on_bias_sigma = 0.0;  // correlation times stay valid
+    n->bias_instability = n->scale_error_sigma = n->cross_axis_sigma = 0.0;
   }
+  c.sensors.imu.accel_resolution_m_s2 = c.sensors.imu.gyro_resolution_rad_s = 0.0;  // exact values
+  c.sensors.imu.vibration = VibrationConfig{};
   c.sensors.baro.noise_pa = 0.0;
   c.sensors.baro.drift_pa_sqrt_s = 0.0;
   c.sensors.baro.temperature_noise_c = 0.0;

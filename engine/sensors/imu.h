@@ -1,6 +1,9 @@
 // Accelerometer + gyroscope at the IMU mount (x500: base origin).
-//   accel_FRD = sat( FRD( f + alpha x r + w x (w x r) ) + noise )    f: specific force at the base
-//   gyro_FRD  = sat( FRD( w ) + noise )                              origin, r = mount (FLU)
+//   accel_FRD = sat( q( noise( FRD( f + alpha x r + w x (w x r) ) ) ) )   f: specific force at the base
+//   gyro_FRD  = sat( q( noise( FRD( w ) ) ) )                           origin, r = mount (FLU)
+// The rotors' vibration (airframe_vibration.h, off by default) adds to f and w before the noise.
+// noise(): inertial_noise.h (scale and cross-axis error, biases, white noise); q() rounds each axis
+// to the part's LSB (`*_resolution`, 0: not rounded), as its register holds whole counts.
 // f and w are the means over the physics step (VehicleState), as an IMU's output filter averages
 // between two readings. sat() clips each axis at the configured full scale, as the sensor's 16-bit
 // register does (the largest count, 32767/32768 of the range: ICM-42688 at +-16 g reads at most
@@ -13,6 +16,7 @@
 #include "engine/model/vehicle_config.h"
 #include "engine/model/vehicle_state.h"
 #include "engine/model/world_config.h"
+#include "engine/sensors/airframe_vibration.h"
 #include "engine/sensors/inertial_noise.h"
 #include "engine/sensors/samples.h"
 
@@ -42,10 +46,14 @@ class Imu {
   model::WorldConfig world_;
   InertialNoise accel_noise_;
   InertialNoise gyro_noise_;
+  AirframeVibration vibration_;
   double last_t_s_ = -1.0;
   ImuSaturation saturation_;
   double noise_scale_ = 1.0;
 };
+
+/// Rounds each axis to a whole multiple of `resolution` (one LSB); 0 leaves it.
+void quantise(Eigen::Vector3d& v, double resolution);
 
 /// Clips each axis to +-the largest 16-bit count of `range` (range * 32767 / 32768); true when any was.
 /// A range of 0 (a config built in code without one) clips nothing.

@@ -14,9 +14,34 @@ using json = nlohmann::json;
 
 std::string unit_path(std::string_view name) { return "sensors." + std::string(name); }
 
+/// `sensors.imu.profile`: the profile applied to `base` (what the vehicle's reader reads over) and
+/// the key taken out (the vehicle's reader does not know it).
+void read_imu_profile(json& root, VehicleFile& out, model::VehicleConfig& base, std::vector<std::string>& errors) {
+  if (!root.is_object()) return;
+  auto sensors = root.find("sensors");
+  if (sensors == root.end() || !sensors->is_object()) return;
+  auto imu = sensors->find("imu");
+  if (imu == sensors->end() || !imu->is_object()) return;
+  auto profile = imu->find("profile");
+  if (profile == imu->end()) return;
+  if (!profile->is_string()) {
+    errors.push_back("sensors.imu.profile: must be a string, one of: " + imu_profile_list() + " (got " + profile->dump() + ")");
+  } else if (auto applied = apply_imu_profile(profile->get<std::string>(), base); !applied) {
+    errors.push_back("sensors.imu.profile: " + applied.error().message);
+  } else {
+    base = std::move(*applied);
+    out.imu_profile = profile->get<std::string>();
+  }
+  imu->erase(profile);
+}
+
 }  // namespace
 
-VehicleFile default_vehicle_file() { return {model::x500_vehicle_config(), UnitConfigs{}}; }
+VehicleFile default_vehicle_file() {
+  VehicleFile file;
+  file.vehicle = model::x500_vehicle_config();
+  return file;
+}
 
 Expected<VehicleFile> parse_vehicle_file(std::string_view json_text, std::string_view source_name) {
   const std::string source(source_name);
@@ -31,6 +56,8 @@ Expected<VehicleFile> parse_vehicle_file(std::string_view json_text, std::string
   }
   VehicleFile out = default_vehicle_file();
   std::vector<std::string> errors;
+  model::VehicleConfig base = out.vehicle;
+  read_imu_profile(root, out, base, errors);
   if (root.is_object() && root.contains("sensors") && root.at("sensors").is_object()) {
     json& sensors = root.at("sensors");
     for_each_unit([&](auto i) {
@@ -50,7 +77,7 @@ Expected<VehicleFile> parse_vehicle_file(std::string_view json_text, std::string
       sensors.erase(it);  // the vehicle's reader does not know the units
     });
   }
-  auto vehicle = model::parse_vehicle_config(root.dump(), source_name);
+  auto vehicle = model::parse_vehicle_config(root.dump(), source_name, base);
   if (!vehicle && errors.empty()) return vehicle.error();
   if (!errors.empty()) {
     std::string message = vehicle ? "" : vehicle.error().message;
@@ -69,6 +96,7 @@ Expected<VehicleFile> load_vehicle_file(const std::filesystem::path& file) {
 
 std::string to_json_text(const VehicleFile& file) {
   json root = json::parse(model::to_json_text(file.vehicle));
+  root["sensors"]["imu"]["profile"] = file.imu_profile;  // every IMU key follows, so it reads back the same
   for_each_unit([&](auto i) {
     using U = UnitAt<decltype(i)::value>;
     json section;

@@ -1,7 +1,8 @@
 // The whole vehicle file: the vehicle (engine/model, config_json.h) and the sensor units' sections
 // `sensors.<name>` (units.h), each unit reading its own keys with its fields(). Read over the
 // compiled-in defaults like the rest of the file; every error names its key, e.g.
-// `vehicle.json: sensors.rangefinder.rate_hz: must be in [0.1, 10000] (got 0)`.
+// `vehicle.json: sensors.rangefinder.rate_hz: must be in [0.1, 10000] (got 0)`. `sensors.imu.profile`
+// picks the IMU's datasheet profile (sensor_profiles.h), which the file's other IMU keys override.
 #pragma once
 
 #include <filesystem>
@@ -11,12 +12,15 @@
 
 #include "base/common/expected.h"
 #include "engine/model/vehicle_config.h"
+#include "engine/sensors/sensor_profiles.h"
 #include "engine/sensors/unit_set.h"
 
 namespace hitl::sensors {
 
 struct VehicleFile {
   model::VehicleConfig vehicle;
+  /// `sensors.imu.profile` (sensor_profiles.h): the profile the IMU's keys were read over.
+  std::string imu_profile{kDefaultImuProfile};
   UnitConfigs units;  ///< every unit's defaults when the file has no section for it (off)
 };
 
