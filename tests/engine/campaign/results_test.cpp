@@ -1,0 +1,85 @@
+// Criteria judged on a summary, and the JUnit XML: suites per axis value, failures with figure and limit.
+#include <gtest/gtest.h>
+
+#include "engine/campaign/criteria.h"
+#include "engine/campaign/results.h"
+
+namespace hitl::campaign {
+namespace {
+
+Campaign campaign_with_criteria() {
+  Campaign c;
+  c.name = "c";
+  c.trajectories = {{"hover", "hover.json", "/x/hover.json"}};
+  FaultCase none;
+  none.name = "none";
+  c.fault_cases = {none};
+  c.seeds = {1, 2};
+  c.speeds = {0};
+  Criterion rms;
+  rms.name = "tracking";
+  rms.figure = "trajectory.rms_m";
+  rms.limit = 0.5;
+  Criterion disarmed;
+  disarmed.name = "disarmed";
+  disarmed.figure = "stack.armed";
+  disarmed.comparison = Comparison::Equals;
+  disarmed.equals_bool = false;
+  c.criteria = {rms, disarmed};
+  return c;
+}
+
+TEST(CampaignCriteria, EachHoldsOrSaysTheFigureAndItsLimit) {
+  const auto c = campaign_with_criteria();
+  nlohmann::json summary = {{"end", "trajectory_done"}, {"trajectory", {{"rms_m", 0.75}}}, {"stack", {{"armed", false}}}};
+  const auto v = judge(c, summary);
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_TRUE(v[0].ok);  // flown
+  EXPECT_FALSE(v[1].ok);
+  EXPECT_EQ(v[1].message, "trajectory.rms_m = 0.75, limit <= 0.5");
+  EXPECT_TRUE(v[2].ok);
+  EXPECT_FALSE(passed(v));
+  summary["end"] = "trajectory_failed";
+  summary["trajectory"]["failure"] = "no takeoff";
+  summary.erase("stack");
+  const auto w = judge(c, summary);
+  EXPECT_EQ(w[0].message, "end = trajectory_failed, limit == trajectory_done (no takeoff)");
+  EXPECT_EQ(w[2].message, "stack.armed = absent, limit == false");
+}
+
+TEST(CampaignResults, JunitHasASuitePerAxisValueAndAFailurePerBrokenCriterion) {
+  const auto c = campaign_with_criteria();
+  const auto flights = expand(c);
+  FlightResult ok;
+  ok.index = 0;
+  ok.outcome = "passed";
+  ok.summary_line = "hover/none/seed-1: fine";
+  FlightResult bad;
+  bad.index = 1;
+  bad.outcome = "failed";
+  bad.summary_line = "hover/none/seed-2: <bad> & worse";
+  Verdict v;
+  v.criterion = "tracking";
+  v.figure = "trajectory.rms_m";
+  v.value = 0.75;
+  v.limit = "<= 0.5";
+  v.message = "trajectory.rms_m = 0.75, limit <= 0.5";
+  bad.verdicts = {v};
+  const auto xml = junit_xml(c, flights, {ok, bad});
+  EXPECT_NE(xml.find("<testsuite name=\"trajectory=hover\" tests=\"2\" failures=\"1\" errors=\"0\" skipped=\"0\""),
+            std::string::npos) << xml;
+  EXPECT_NE(xml.find("<testsuite name=\"faults=none\" tests=\"2\" failures=\"1\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<testsuite name=\"seed=1\" tests=\"1\" failures=\"0\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<testsuite name=\"seed=2\" tests=\"1\" failures=\"1\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<failure message=\"tracking: trajectory.rms_m = 0.75, limit &lt;= 0.5\" type=\"tracking\""),
+            std::string::npos) << xml;
+  EXPECT_NE(xml.find("<system-out>hover/none/seed-2: &lt;bad&gt; &amp; worse</system-out>"), std::string::npos) << xml;
+  const auto missing = junit_xml(c, flights, {ok, std::nullopt});
+  EXPECT_NE(missing.find("<skipped message="), std::string::npos) << missing;
+  const auto t = tally({ok, std::nullopt});
+  EXPECT_EQ(t.passed, 1u);
+  EXPECT_EQ(t.missing, 1u);
+}
+
+}  // namespace
+}  // namespace hitl::campaign
