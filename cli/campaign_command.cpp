@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <mutex>
@@ -19,6 +20,7 @@
 #include "engine/campaign/campaign_run.h"
 #include "engine/campaign/flight.h"
 #include "engine/campaign/flight_run.h"
+#include "engine/campaign/history.h"
 #include "engine/campaign/results.h"
 #include "engine/faults/fault_spec.h"
 
@@ -33,7 +35,31 @@ struct CampaignRunOptions {
   std::optional<std::size_t> only;
   bool resume = false;
   bool rerun_failed = false;
+  std::string history;  ///< --history FILE (empty: the default, campaign::default_history_path())
+  std::string label;    ///< --label TEXT
+  bool no_history = false;
 };
+
+struct CampaignHistoryOptions {
+  std::string campaign;  ///< empty: the campaign of the latest run
+  std::string history;
+  std::size_t last_runs = 10;
+};
+
+/// --history FILE, or the default under the user's data folder.
+Expected<std::string> history_path(const std::string& given) {
+  if (!given.empty()) return given;
+  return campaign::default_history_path();
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
 
 /// The board's and the session's events in a flight's process (its log.txt): warnings and errors,
 /// everything with -v.
@@ -159,6 +185,13 @@ int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
   const auto flights = campaign::expand(*c);
   const std::string out_dir = o.out_dir.empty() ? "campaign-" + c->name : o.out_dir;
   if (o.only) return run_one(g, *c, flights, o, out_dir);
+  std::string history;
+  if (!o.no_history) {
+    auto h = history_path(o.history);
+    if (!h) return log_error("campaign", h.error().prefixed("--history: "));
+    history = *h;
+  }
+  const std::string started_utc = utc_now();
 
   std::error_code ec;
   const std::string file_abs = std::filesystem::absolute(o.file, ec).string();
@@ -186,6 +219,14 @@ int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
   if (auto ok = campaign::write_results(out_dir, *c, flights, outcome->results, outcome->wall_s, outcome->stopped); !ok)
     return log_error("campaign", ok.error());
   const auto t = campaign::tally(outcome->results);
+  bool history_failed = false;
+  if (!history.empty()) {
+    campaign::RunRecord record{o.label, started_utc, outcome->wall_s, outcome->stopped};
+    if (auto ok = campaign::record_run(history, *c, flights, outcome->results, record); !ok) {
+      log_error("campaign", ok.error().prefixed("--history: "));
+      history_failed = true;
+    }
+  }
   if (g.json) {
     print_json_line(campaign::campaign_summary_json(*c, flights, outcome->results, outcome->wall_s, outcome->stopped));
   } else {
@@ -195,8 +236,56 @@ int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
     std::cout << line << (outcome->stopped ? " (stopped: --resume flies the rest)" : "") << '\n'
               << "results: " << out_dir << "/ (" << campaign::kCampaignSummaryFile << ", " << campaign::kJunitFile
               << ", flights/<id>/)\n";
+    if (!history.empty() && !history_failed) std::cout << "history: " << history << " (hitl campaign history)\n";
   }
-  return t.passed == t.flights ? kExitOk : kExitFailed;
+  return t.passed == t.flights && !history_failed ? kExitOk : kExitFailed;
+}
+
+int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o) {
+  auto path = history_path(o.history);
+  if (!path) return log_error("campaign", path.error().prefixed("--history: "));
+  std::string name = o.campaign;
+  if (name.empty()) {
+    auto names = campaign::history_campaigns(*path);
+    if (!names) return log_error("campaign", names.error());
+    if (names->empty()) return log_error("campaign", Error::input("history " + *path + ": no runs yet"));
+    name = names->front();
+  }
+  auto h = campaign::read_history(*path, name, o.last_runs);
+  if (!h) return log_error("campaign", h.error());
+  bool regression = false;
+  for (const auto& t : h->trends) regression = regression || t.regression;
+  if (g.json) {
+    nlohmann::json trends = nlohmann::json::array();
+    for (const auto& t : h->trends) {
+      nlohmann::json points = nlohmann::json::array();
+      for (const auto& p : t.points)
+        points.push_back({{"run", p.run}, {"label", p.label}, {"started_utc", p.started_utc}, {"flights", p.flights},
+                          {"failed", p.failed}, {"mean", p.flights > 0 ? nlohmann::json(p.mean) : nlohmann::json(nullptr)},
+                          {"worst", p.flights > 0 ? nlohmann::json(p.worst) : nlohmann::json(nullptr)}});
+      trends.push_back({{"criterion", t.criterion}, {"figure", t.figure}, {"limit", t.limit}, {"points", points},
+                        {"regression", t.regression}, {"verdict", t.verdict}});
+    }
+    print_json_line({{"type", "summary"}, {"campaign", h->campaign}, {"history", *path}, {"runs", h->runs},
+                     {"regression", regression}, {"trends", trends}});
+  } else {
+    std::cout << "campaign " << h->campaign << ": " << h->runs << " runs in " << *path << "\n";
+    for (const auto& t : h->trends) {
+      std::cout << "\n" << t.criterion << " (" << t.figure << " " << t.limit << ")\n";
+      for (const auto& p : t.points) {
+        char line[256];
+        if (p.flights > 0)
+          std::snprintf(line, sizeof line, "  run %-4lld %-20s %-16s mean %-10.4g worst %-10.4g failed %zu", static_cast<long long>(p.run),
+                        p.started_utc.c_str(), p.label.empty() ? "-" : p.label.c_str(), p.mean, p.worst, p.failed);
+        else
+          std::snprintf(line, sizeof line, "  run %-4lld %-20s %-16s failed %zu", static_cast<long long>(p.run), p.started_utc.c_str(),
+                        p.label.empty() ? "-" : p.label.c_str(), p.failed);
+        std::cout << line << '\n';
+      }
+      std::cout << "  " << t.verdict << '\n';
+    }
+  }
+  return regression ? kExitFailed : kExitOk;
 }
 
 }  // namespace
@@ -218,8 +307,24 @@ void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state
   auto* resume = run->add_flag("--resume", o->resume, "Continue a stopped run: fly only the flights without a result");
   auto* rerun = run->add_flag("--rerun-failed", o->rerun_failed, "Fly the flights without a result and those that failed");
   resume->excludes(rerun);
+  auto* history = run->add_option("--history", o->history,
+                                  "Add this run to the history database (SQLite; default $XDG_DATA_HOME/hitl/campaigns.sqlite, "
+                                  "~/.local/share/hitl/campaigns.sqlite without XDG_DATA_HOME)")
+                      ->type_name("FILE");
+  run->add_option("--label", o->label, "Name this run in the history: a commit, a firmware version")->type_name("TEXT");
+  run->add_flag("--no-history", o->no_history, "Keep this run out of the history")->excludes(history);
   run->footer("Exit: 0 when every flight passed, 1 otherwise.");
   run->callback([&options, &state, o]() { state.exit_code = run_campaign_command(options, *o); });
+
+  auto ho = std::make_shared<CampaignHistoryOptions>();
+  auto* hist = sub->add_subcommand("history", "Per-criterion trends of a campaign's runs from the history, regressions flagged");
+  hist->add_option("NAME", ho->campaign, "The campaign (default: the one run last)");
+  hist->add_option("--history", ho->history, "The history database (default: as hitl campaign run)")->type_name("FILE");
+  hist->add_option("--last", ho->last_runs, "How many of the latest runs to show (at least 2)")->capture_default_str()
+      ->check(number_in(2, 1000))->type_name("N");
+  hist->footer("A regression: the latest run's mean (failures for an equals criterion) worse than the runs before it by more "
+               "than their spread. Exit: 0 none, 1 a regression, 2 no such history or campaign.");
+  hist->callback([&options, &state, ho]() { state.exit_code = run_history_command(options, *ho); });
 }
 
 }  // namespace hitl::cli

@@ -13,7 +13,7 @@ _hitl_commands() {
         'params') echo 'show get set diff check export load reset' ;;
         'fly') echo 'takeoff land hold trajectory' ;;
         'board') echo 'install start stop status restore' ;;
-        'campaign') echo 'run' ;;
+        'campaign') echo 'run history' ;;
     esac
 }
 
@@ -52,7 +52,8 @@ _hitl_options() {
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --queue-ms --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
         'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --px4 --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'campaign run') echo '-h --help -j --jobs --out --only --resume --rerun-failed --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'campaign run') echo '-h --help -j --jobs --out --only --resume --rerun-failed --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'campaign history') echo '-h --help --history --last --version --json -v --verbose -q --quiet --dialect --config' ;;
         'report') echo '-h --help -o --output --ulog --no-ulog --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
@@ -62,8 +63,8 @@ _hitl_options() {
 # file [PATTERN], dir, messages, message-rates; "optional KIND" when the value may be left out.
 _hitl_value() {
     case "$1|$2" in
-        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'campaign|--dialect'|'campaign run|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
-        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'campaign|--config'|'campaign run|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
+        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'campaign|--dialect'|'campaign run|--dialect'|'campaign history|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
+        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'campaign|--config'|'campaign run|--config'|'campaign history|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
         'inspect|--bind') echo 'text' ;;
         'inspect|--local-port') echo 'text' ;;
         'inspect|--record') echo 'file *.tlog' ;;
@@ -227,6 +228,10 @@ _hitl_value() {
         'campaign run|-j'|'campaign run|--jobs') echo 'text' ;;
         'campaign run|--out') echo 'text' ;;
         'campaign run|--only') echo 'text' ;;
+        'campaign run|--history') echo 'file' ;;
+        'campaign run|--label') echo 'text' ;;
+        'campaign history|--history') echo 'file' ;;
+        'campaign history|--last') echo 'text' ;;
         'report|-o'|'report|--output') echo 'file *.html' ;;
         'report|--ulog') echo 'file' ;;
     esac

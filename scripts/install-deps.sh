@@ -10,7 +10,7 @@ packages=(
   build-essential cmake ccache pkg-config
   libcli11-dev libeigen3-dev libsimbody-dev libncurses-dev nlohmann-json3-dev
   libpugixml-dev libgeographiclib-dev libedit-dev
-  libtomlplusplus-dev  # hitl campaign's TOML files (docs/campaigns.md)
+  libtomlplusplus-dev libsqlite3-dev  # hitl campaign: its TOML files and its history database (docs/campaigns.md)
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
 )

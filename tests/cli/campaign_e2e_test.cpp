@@ -31,9 +31,11 @@ std::string read_text(const std::string& path) {
 
 json read_json(const std::string& path) { return json::parse(read_text(path)); }
 
-/// A folder with a hover of `hover_s` seconds and a campaign over it (2 fault cases x 2 seeds).
+/// A folder with a hover of `hover_s` seconds and a campaign over it (2 fault cases x 2 seeds). The
+/// runs' default history goes into it too (XDG_DATA_HOME), never the user's data folder.
 std::string write_campaign(const std::string& dir, double hover_s, const std::string& extra_criteria,
                            double time_limit_s = 120) {
+  ::setenv("XDG_DATA_HOME", dir.c_str(), 1);
   std::ofstream(dir + "/hover.json") << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2, "yaw": 0}, {"t": )" << hover_s
                                      << R"(, "x": 0, "y": 0, "z": 2, "yaw": 0}]})";
   const std::string file = dir + "/c.toml";
@@ -73,7 +75,9 @@ TEST(CampaignE2E, ASmallCampaignWritesItsResultsAndJunitAsAConsumerReadsIt) {
   // A planted criterion no flight meets: each flight fails it, with the figure and its limit.
   const auto file = write_campaign(dir, 3, "planted = { figure = \"sim_time_s\", max = 1 }\n");
   const std::string out = dir + "/out";
-  auto r = test::run_hitl({"--json", "campaign", "run", file, "-j", "2", "--out", out}, std::chrono::seconds(120));
+  auto r = test::run_hitl({"--json", "campaign", "run", file, "-j", "2", "--out", out, "--history", dir + "/h.sqlite", "--label",
+                           "first"},
+                          std::chrono::seconds(120));
   ASSERT_EQ(r.exit_code, 1) << r.out << r.err;  // the planted criterion fails every flight
   const auto summary = test::last_json_line(r.out);
   EXPECT_EQ(summary["type"], "summary");
@@ -107,6 +111,19 @@ TEST(CampaignE2E, ASmallCampaignWritesItsResultsAndJunitAsAConsumerReadsIt) {
   }
   EXPECT_EQ(started, 4);
   EXPECT_EQ(finished, 4);
+  // The run is in the history, each criterion with its figure over the 4 flights.
+  auto history = test::run_hitl({"--json", "campaign", "history", "--history", dir + "/h.sqlite"});
+  ASSERT_EQ(history.exit_code, 0) << history.out << history.err;
+  const auto h = test::last_json_line(history.out);
+  EXPECT_EQ(h["campaign"], "e2e");
+  EXPECT_EQ(h["runs"], 1);
+  ASSERT_EQ(h["trends"].size(), 3u) << h.dump();  // flown, disarmed, planted
+  const auto& planted = h["trends"][2];
+  EXPECT_EQ(planted["criterion"], "planted");
+  ASSERT_EQ(planted["points"].size(), 1u);
+  EXPECT_EQ(planted["points"][0]["label"], "first");
+  EXPECT_EQ(planted["points"][0]["failed"], 4);
+  EXPECT_EQ(planted["points"][0]["flights"], 4);
 
   // The JUnit XML through python3-junitparser.
   if (!std::filesystem::exists("/usr/lib/python3/dist-packages/junitparser"))
