@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <regex>
 #include <set>
 
 #include <toml++/toml.h>
@@ -26,6 +27,15 @@ const char* to_string(Stack stack) {
     case Stack::Target: return "target";
   }
   return "target";
+}
+
+const char* to_string(ExpectKind kind) {
+  switch (kind) {
+    case ExpectKind::Statustext: return "statustext";
+    case ExpectKind::Mode: return "mode";
+    case ExpectKind::Event: return "event";
+  }
+  return "event";
 }
 
 const char* to_string(Comparison comparison) {
@@ -324,9 +334,11 @@ Status read_criteria(const Reader& r, const toml::table& root, Campaign& c) {
       cr.comparison = Comparison::Equals;
       if (equals->is_boolean()) {
         cr.equals_bool = *equals->value<bool>();
+      } else if (equals->is_string()) {
+        cr.equals_text = *equals->value<std::string>();
       } else {
         auto x = r.number_of(*equals, where + ".equals", -1e300, 1e300);
-        if (!x) return r.at(*equals, where + ".equals", "must be a number or true/false");
+        if (!x) return r.at(*equals, where + ".equals", "must be a number, true/false or a string");
         cr.limit = *x;
       }
     }
@@ -335,11 +347,65 @@ Status read_criteria(const Reader& r, const toml::table& root, Campaign& c) {
   return Ok{};
 }
 
+Status read_expectations(const Reader& r, const toml::table& root, const std::set<std::string>& names_taken, Campaign& c) {
+  const auto* node = root.get("expect");
+  if (node == nullptr) return Ok{};
+  const auto* t = node->as_table();
+  if (t == nullptr) return r.at(*node, "expect", "must be a table [expect] of named expectations");
+  if (t->size() > kMaxAxisValues) return r.at(*node, "expect", "has more than " + std::to_string(kMaxAxisValues) + " expectations");
+  const auto fault_names = faults::fault_names();
+  for (const auto& [key, value] : in_file_order(*t)) {
+    const std::string where = "expect." + std::string(key->str());
+    Expectation e;
+    e.name = std::string(key->str());
+    e.line = line_of(*key);
+    if (auto ok = r.check_name(*value, e.line, where, e.name); !ok) return ok;
+    if (e.name == kFlownCriterion || names_taken.count(e.name) > 0)
+      return r.at(e.line, where, "\"" + e.name + "\" is already a criterion's name; each result needs its own");
+    const auto* et = value->as_table();
+    if (et == nullptr) return r.at(*value, where, "must be a table { statustext = \"REGEX\" } (or mode, event; after_fault, within_s)");
+    if (auto ok = r.only_keys(*et, where, {"statustext", "mode", "event", "after_fault", "within_s"}); !ok) return ok;
+    int given = 0;
+    for (const char* kind : {"statustext", "mode", "event"})
+      if (et->get(kind) != nullptr) ++given;
+    if (given != 1) return r.at(*value, where, "needs exactly one of statustext, mode, event");
+    const char* kind_key = et->get("statustext") != nullptr ? "statustext" : et->get("mode") != nullptr ? "mode" : "event";
+    e.kind = et->get("statustext") != nullptr ? ExpectKind::Statustext : et->get("mode") != nullptr ? ExpectKind::Mode : ExpectKind::Event;
+    const auto& pattern_node = *et->get(kind_key);
+    auto pattern = r.string_of(pattern_node, where + "." + kind_key);
+    if (!pattern) return pattern.error();
+    if (pattern->empty() || pattern->size() > kMaxPatternChars)
+      return r.at(pattern_node, where + "." + kind_key, "must be 1 to " + std::to_string(kMaxPatternChars) + " characters");
+    if (e.kind != ExpectKind::Mode) {
+      try {
+        std::regex check(*pattern, std::regex::ECMAScript);
+      } catch (const std::regex_error& error) {
+        return r.at(pattern_node, where + "." + kind_key, "not a regular expression: " + std::string(error.what()));
+      }
+    }
+    e.pattern = *pattern;
+    if (const auto* after = et->get("after_fault")) {
+      auto f = r.string_of(*after, where + ".after_fault");
+      if (!f) return f.error();
+      if (std::find(fault_names.begin(), fault_names.end(), *f) == fault_names.end())
+        return r.at(*after, where + ".after_fault", "\"" + *f + "\" is not a fault (docs/faults.md)");
+      e.after_fault = *f;
+    }
+    if (const auto* within = et->get("within_s")) {
+      auto x = r.number_of(*within, where + ".within_s", 0, 86400);
+      if (!x) return x.error();
+      e.within_s = *x;
+    }
+    c.expectations.push_back(std::move(e));
+  }
+  return Ok{};
+}
+
 void collect_leaves(const nlohmann::json& j, const std::string& prefix, std::vector<std::string>& out) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string path = prefix.empty() ? it.key() : prefix + "." + it.key();
     if (it->is_object()) collect_leaves(*it, path, out);
-    else if (it->is_number() || it->is_boolean() || it->is_null()) out.push_back(path);
+    else if (it->is_number() || it->is_boolean() || it->is_null() || it->is_string()) out.push_back(path);
   }
 }
 
@@ -349,8 +415,9 @@ std::vector<std::string> criterion_figures() {
   Campaign c;
   hil::SessionSnapshot s;
   s.trajectory_state = "DONE";  // the trajectory's figures are in every campaign flight's summary
-  auto j = flight_summary_json(c, Flight{}, s, "trajectory_done", StackFigures{});
+  auto j = flight_summary_json(c, Flight{}, s, "trajectory_done", StackFigures{}, nullptr);
   j.erase("flight");  // its parameters, not figures
+  j.erase("type");
   std::vector<std::string> out;
   collect_leaves(j, "", out);
   return out;
@@ -366,11 +433,14 @@ Expected<Campaign> parse_campaign(const std::string& text, const std::string& pa
   }
   Campaign c;
   c.file = path;
-  if (auto ok = r.only_keys(root, "", {"campaign", "matrix", "faults", "criteria"}); !ok) return ok.error();
+  if (auto ok = r.only_keys(root, "", {"campaign", "matrix", "faults", "criteria", "expect"}); !ok) return ok.error();
   if (auto ok = read_campaign_table(r, root, c); !ok) return ok.error();
   if (auto ok = read_matrix(r, root, c); !ok) return ok.error();
   if (auto ok = read_faults(r, root, suggest, c); !ok) return ok.error();
   if (auto ok = read_criteria(r, root, c); !ok) return ok.error();
+  std::set<std::string> criterion_names;
+  for (const auto& cr : c.criteria) criterion_names.insert(cr.name);
+  if (auto ok = read_expectations(r, root, criterion_names, c); !ok) return ok.error();
   const std::size_t flights = c.trajectories.size() * c.fault_cases.size() * c.seeds.size() * c.speeds.size();
   if (flights > kMaxFlights)
     return Error::input(path + ": the matrix has " + std::to_string(flights) + " flights, more than " + std::to_string(kMaxFlights));

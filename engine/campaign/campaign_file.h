@@ -53,7 +53,28 @@ struct Criterion {
   Comparison comparison = Comparison::AtMost;
   double limit = 0;                 ///< AtMost, AtLeast, Equals of a number
   std::optional<bool> equals_bool;  ///< Equals of a true/false figure
+  std::optional<std::string> equals_text;  ///< Equals of a text figure ("stack.landed_state" == "on_ground")
   int line = 0;                     ///< where the file defines it
+};
+
+/// What an expectation looks for in the flight's events (the recording read back: engine/report).
+enum class ExpectKind {
+  Statustext,  ///< a STATUSTEXT from the flight stack whose text matches `pattern`
+  Mode,        ///< the flight stack entering the mode named `pattern` ("Land", "Hold", "Position")
+  Event,       ///< any event ("armed", "disarmed", "mode Land", a STATUSTEXT from anyone) matching `pattern`
+};
+const char* to_string(ExpectKind kind);
+inline constexpr std::size_t kMaxPatternChars = 200;
+
+/// A named expectation on what the flight stack does: an event, at or after a fault's first start
+/// (after_fault) and within within_s of it (or of the flight's start).
+struct Expectation {
+  std::string name;
+  ExpectKind kind = ExpectKind::Statustext;
+  std::string pattern;             ///< a regular expression (ECMAScript, found anywhere in the text); Mode: the name
+  std::string after_fault;         ///< a fault's name ("gps-loss"); flights without it do not judge this
+  std::optional<double> within_s;  ///< at most this long after the fault's start (or the flight's start)
+  int line = 0;
 };
 
 struct Campaign {
@@ -68,6 +89,7 @@ struct Campaign {
   std::vector<uint64_t> seeds;
   std::vector<double> speeds;
   std::vector<Criterion> criteria;
+  std::vector<Expectation> expectations;
 };
 
 /// Parses a campaign file's text; `path` names it in messages and anchors its relative paths.
@@ -78,7 +100,7 @@ Expected<Campaign> parse_campaign(const std::string& text, const std::string& pa
 /// Reads and parses the file (bounded).
 Expected<Campaign> load_campaign(const std::string& path, const faults::Suggest& suggest = {});
 
-/// The figures a criterion may name: every number or true/false leaf of a flight's summary
+/// The figures a criterion may name: every number, true/false or text leaf of a flight's summary
 /// (flight_summary.h), as dotted paths.
 std::vector<std::string> criterion_figures();
 

@@ -6,6 +6,7 @@
 
 #include "base/common/bounded_read.h"
 #include "engine/model/x500_defaults.h"
+#include "engine/report/flight_log.h"
 #include "engine/report/report.h"
 #include "engine/sensors/vehicle_file.h"
 #include "engine/vehicle/trajectory.h"
@@ -137,7 +138,10 @@ Expected<FlightResult> run_flight(const Campaign& campaign, const Flight& flight
   r.index = flight.index;
   r.id = flight.id;
   r.name = flight.name;
-  r.figures = flight_summary_json(campaign, flight, snapshot, end_name(*end), stack.figures());
+  // The recording read back: the EKF's test ratios and the flight stack's events (expectations).
+  auto log = report::read_flight_log(cfg.record_path);
+  r.figures = flight_summary_json(campaign, flight, snapshot, end_name(*end), stack.figures(), log ? &log.value() : nullptr);
+  if (!log) r.figures["events_error"] = log.error().message;
   if (campaign.report) {
     auto written = report::write_report(cfg.record_path, (std::filesystem::path(folder) / kReportFile).string());
     r.figures["report"] = written ? nlohmann::json(written->html_path) : nlohmann::json(nullptr);

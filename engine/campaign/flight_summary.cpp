@@ -1,5 +1,7 @@
 #include "engine/campaign/flight_summary.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "engine/hil/snapshot_json.h"
@@ -18,7 +20,7 @@ nlohmann::json per_sim_second(const hil::SessionSnapshot& s, const std::map<std:
 }  // namespace
 
 nlohmann::json flight_summary_json(const Campaign& campaign, const Flight& flight, const hil::SessionSnapshot& s,
-                                   const std::string& end, const StackFigures& stack) {
+                                   const std::string& end, const StackFigures& stack, const report::FlightLog* log) {
   auto j = hil::snapshot_json(s, true);
   j["end"] = end;
   j["rates_hz"] = {{"HIL_SENSOR", per_sim_second(s, s.sent, "HIL_SENSOR")},
@@ -34,6 +36,24 @@ nlohmann::json flight_summary_json(const Campaign& campaign, const Flight& fligh
                 {"odometry_received", stack.odometry_received},
                 {"actuators_sent", stack.actuators_sent},
                 {"malformed", stack.malformed}};
+  nlohmann::json ratios = nlohmann::json::object();
+  for (std::size_t i = 0; i < report::kEkfRatioNames.size(); ++i) {
+    std::string name = report::kEkfRatioNames[i];
+    std::replace(name.begin(), name.end(), ' ', '_');
+    nlohmann::json largest = nullptr;
+    if (log != nullptr)
+      for (const double v : log->ekf_ratios[i].value)
+        if (std::isfinite(v) && (largest.is_null() || v > largest.get<double>())) largest = v;
+    ratios[name] = largest;
+  }
+  j["ekf_test_ratios"] = ratios;
+  nlohmann::json events = nlohmann::json::array();
+  if (log != nullptr)
+    for (const auto& e : log->events) {
+      if (events.size() >= kMaxSummaryEvents) break;
+      events.push_back({{"t_s", e.t_s}, {"source", e.source}, {"text", e.text}});
+    }
+  j["events"] = events;
   nlohmann::json specs = nlohmann::json::array();
   if (flight.fault_case != nullptr)
     for (const auto& f : flight.fault_case->faults) specs.push_back(f.text());

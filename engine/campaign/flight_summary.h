@@ -10,6 +10,7 @@
 
 #include "engine/campaign/flight.h"
 #include "engine/hil/session_snapshot.h"
+#include "engine/report/flight_log.h"
 
 namespace hitl::campaign {
 
@@ -25,9 +26,15 @@ struct StackFigures {
   uint64_t malformed = 0;
 };
 
-/// The summary JSON of one flight. `end` is the session's end ("trajectory_done", ...).
+/// Events kept in a flight's summary (the recording holds them all).
+inline constexpr std::size_t kMaxSummaryEvents = 500;
+
+/// The summary JSON of one flight. `end` is the session's end ("trajectory_done", ...). `log`, the
+/// flight's recording read back (engine/report), gives "ekf_test_ratios" (each ratio's largest over
+/// the flight, ESTIMATOR_STATUS) and "events" (STATUSTEXT, armed, disarmed, mode changes on the
+/// simulator's clock); without it they are null and empty.
 nlohmann::json flight_summary_json(const Campaign& campaign, const Flight& flight, const hil::SessionSnapshot& snapshot,
-                                   const std::string& end, const StackFigures& stack);
+                                   const std::string& end, const StackFigures& stack, const report::FlightLog* log);
 
 /// The value at a dotted path ("trajectory.rms_m"), or nullptr when absent.
 const nlohmann::json* figure_at(const nlohmann::json& summary, const std::string& path);

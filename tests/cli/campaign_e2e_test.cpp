@@ -43,7 +43,9 @@ std::string write_campaign(const std::string& dir, double hover_s, const std::st
                       << "\n[matrix]\ntrajectories = [\"hover.json\"]\nseeds = [1, 2]\n"
                          "[faults]\nnone = []\ngps-loss = [\"gps-loss@2+2\"]\n"
                          "[criteria]\ndisarmed = { figure = \"stack.armed\", equals = false }\n"
-                      << extra_criteria;
+                      << extra_criteria
+                      << "[expect]\nlands = { mode = \"Land\" }\n"
+                         "lands-after-the-loss = { statustext = \"Landing detected\", after_fault = \"gps-loss\" }\n";
   return file;
 }
 
@@ -98,6 +100,18 @@ TEST(CampaignE2E, ASmallCampaignWritesItsResultsAndJunitAsAConsumerReadsIt) {
     EXPECT_EQ(figures["end"], "trajectory_done");
     EXPECT_EQ(figures["flight"]["id"], f["id"]);
     EXPECT_EQ(figures["stack"]["armed"], false);
+    EXPECT_TRUE(figures["ekf_test_ratios"]["velocity"].is_number()) << figures["ekf_test_ratios"].dump();
+    // The expectations held: the board's Land mode; its "Landing detected" after the GPS loss (those flights only).
+    const auto result = read_json(folder + "/result.json");
+    std::set<std::string> judged;
+    for (const auto& v : result["criteria"]) {
+      judged.insert(v["criterion"].get<std::string>());
+      if (v["criterion"] != "planted") {
+        EXPECT_TRUE(v["ok"].get<bool>()) << v.dump();
+      }
+    }
+    EXPECT_EQ(judged.count("lands"), 1u);
+    EXPECT_EQ(judged.count("lands-after-the-loss"), f["fault_case"] == "gps-loss" ? 1u : 0u) << f.dump();
     EXPECT_GT(figures["trajectory"]["samples"].get<int>(), 0);
   }
   ASSERT_EQ(by_name.size(), 4u);
@@ -117,7 +131,7 @@ TEST(CampaignE2E, ASmallCampaignWritesItsResultsAndJunitAsAConsumerReadsIt) {
   const auto h = test::last_json_line(history.out);
   EXPECT_EQ(h["campaign"], "e2e");
   EXPECT_EQ(h["runs"], 1);
-  ASSERT_EQ(h["trends"].size(), 3u) << h.dump();  // flown, disarmed, planted
+  ASSERT_EQ(h["trends"].size(), 5u) << h.dump();  // flown, disarmed, planted, lands, lands-after-the-loss
   const auto& planted = h["trends"][2];
   EXPECT_EQ(planted["criterion"], "planted");
   ASSERT_EQ(planted["points"].size(), 1u);

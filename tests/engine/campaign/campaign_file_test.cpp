@@ -92,6 +92,37 @@ TEST_F(CampaignFileTest, AGoodFileIsReadWhole) {
   EXPECT_EQ(c->criteria[2].equals_bool, std::optional<bool>(false));
 }
 
+TEST_F(CampaignFileTest, ExpectationsAreReadInTheFilesOrder) {
+  auto c = parse(std::string(kGood) + "landed = { figure = \"stack.landed_state\", equals = \"on_ground\" }\n"
+                                      "[expect]\nsays-gps = { statustext = \"GPS (lost|loss)\", after_fault = \"gps-loss\", within_s = 5 }\n"
+                                      "lands = { mode = \"Land\" }\ndisarms = { event = \"^disarmed$\" }\n");
+  ASSERT_TRUE(c) << c.error().message;
+  ASSERT_EQ(c->expectations.size(), 3u);
+  EXPECT_EQ(c->expectations[0].name, "says-gps");
+  EXPECT_EQ(c->expectations[0].kind, ExpectKind::Statustext);
+  EXPECT_EQ(c->expectations[0].pattern, "GPS (lost|loss)");
+  EXPECT_EQ(c->expectations[0].after_fault, "gps-loss");
+  EXPECT_EQ(c->expectations[0].within_s, std::optional<double>(5));
+  EXPECT_EQ(c->expectations[1].kind, ExpectKind::Mode);
+  EXPECT_EQ(c->expectations[2].kind, ExpectKind::Event);
+  EXPECT_EQ(c->criteria.back().equals_text, std::optional<std::string>("on_ground"));
+}
+
+TEST_F(CampaignFileTest, BadExpectationsAreRefusedWithTheirKey) {
+  const std::string head = "[campaign]\nname = \"x\"\n[matrix]\ntrajectories = [\"hover.json\"]\n[expect]\n";
+  EXPECT_NE(refusal(head + "a = { statustext = \"(unclosed\" }\n", 6).find("expect.a.statustext: not a regular expression"),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "a = { mode = \"Land\", event = \"x\" }\n", 6).find("expect.a: needs exactly one of statustext, mode, event"),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "a = { mode = \"Land\", after_fault = \"gps-lost\" }\n", 6)
+                .find("expect.a.after_fault: \"gps-lost\" is not a fault"), std::string::npos);
+  EXPECT_NE(refusal(head + "a = { mode = \"Land\", within_s = -1 }\n", 6).find("expect.a.within_s: must be between"),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "a = { mode = \"Land\", when = 3 }\n", 6).find("expect.a.when: unknown key"), std::string::npos);
+  EXPECT_NE(refusal(head + "flown = { mode = \"Land\" }\n", 6).find("expect.flown: \"flown\" is already a criterion's name"),
+            std::string::npos);
+}
+
 TEST_F(CampaignFileTest, DefaultsAreOneSeedSpeedZeroAndNoFault) {
   auto c = parse("[campaign]\nname = \"x\"\n[matrix]\ntrajectories = [\"hover.json\"]\n");
   ASSERT_TRUE(c) << c.error().message;

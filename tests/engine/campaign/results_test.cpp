@@ -47,6 +47,49 @@ TEST(CampaignCriteria, EachHoldsOrSaysTheFigureAndItsLimit) {
   EXPECT_EQ(w[2].message, "stack.armed = absent, limit == false");
 }
 
+TEST(CampaignCriteria, ExpectationsLookForTheEventAfterTheFaultsStart) {
+  Campaign c;
+  Expectation says;
+  says.name = "says-landing";
+  says.kind = ExpectKind::Statustext;
+  says.pattern = "Landing (detected|at)";
+  says.after_fault = "gps-loss";
+  says.within_s = 3;
+  Expectation lands;
+  lands.name = "lands";
+  lands.kind = ExpectKind::Mode;
+  lands.pattern = "Land";
+  c.expectations = {says, lands};
+  nlohmann::json summary = {
+      {"end", "trajectory_done"},
+      {"flight", {{"faults", {"gps-loss@10+2"}}}},
+      {"faults", {{{"name", "gps-loss"}, {"start_s", 10.0}, {"end_s", 12.0}}}},
+      {"events", {{{"t_s", 9.0}, {"source", "system 1"}, {"text", "Landing at current position"}},   // before the fault
+                  {{"t_s", 11.0}, {"source", "simulator"}, {"text", "Landing detected"}},            // not the flight stack
+                  {{"t_s", 12.5}, {"source", "system 1"}, {"text", "mode Land"}},
+                  {{"t_s", 14.0}, {"source", "system 1"}, {"text", "Landing detected"}}}}};          // past 3 s
+  auto v = judge(c, summary);
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_FALSE(v[1].ok);
+  EXPECT_EQ(v[1].limit, "statustext ~ /Landing (detected|at)/ within 3 s of gps-loss's start at 10.000 s");
+  EXPECT_EQ(v[1].message, "no statustext ~ /Landing (detected|at)/ within 3 s of gps-loss's start at 10.000 s");
+  EXPECT_TRUE(v[2].ok);
+  EXPECT_EQ(v[2].value["t_s"], 12.5);
+  summary["events"].push_back({{"t_s", 12.9}, {"source", "system 1"}, {"text", "Landing detected"}});
+  EXPECT_TRUE(judge(c, summary)[1].ok);
+  // A flight without that fault does not judge it; one whose fault never started fails it.
+  nlohmann::json calm = {{"end", "trajectory_done"}, {"flight", {{"faults", nlohmann::json::array()}}},
+                         {"faults", nlohmann::json::array()}, {"events", summary["events"]}};
+  const auto calm_verdicts = judge(c, calm);
+  ASSERT_EQ(calm_verdicts.size(), 2u);
+  EXPECT_EQ(calm_verdicts[1].criterion, "lands");
+  calm["flight"]["faults"] = {"gps-loss@100"};
+  const auto late = judge(c, calm);
+  ASSERT_EQ(late.size(), 3u);
+  EXPECT_FALSE(late[1].ok);
+  EXPECT_EQ(late[1].message, "the fault gps-loss never started, so statustext ~ /Landing (detected|at)/ could not follow it");
+}
+
 TEST(CampaignResults, JunitHasASuitePerAxisValueAndAFailurePerBrokenCriterion) {
   const auto c = campaign_with_criteria();
   const auto flights = expand(c);
