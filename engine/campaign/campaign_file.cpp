@@ -284,9 +284,15 @@ Status read_faults(const Reader& r, const toml::table& root, const faults::Sugge
   if (t == nullptr) return r.at(*node, "faults", "must be a table [faults] of named cases");
   if (t->empty()) return r.at(*node, "faults", "has no cases: the matrix would have no flights (none = [] is the flight without faults)");
   if (t->size() > kMaxAxisValues) return r.at(*node, "faults", "has more than " + std::to_string(kMaxAxisValues) + " cases");
+  std::map<std::string, std::string> seen;  // what a case flies -> its name: two names for one case would be one flight twice
   for (const auto& [key, value] : in_file_order(*t)) {
     FaultCase fc;
     if (auto ok = read_fault_case(r, *key, *value, suggest, fc); !ok) return ok;
+    std::string flies = "scenario=" + fc.scenario_as_written + ";";
+    for (const auto& f : fc.faults) flies += f.text() + ";";
+    if (const auto it = seen.find(flies); it != seen.end())
+      return r.at(line_of(*key), "faults." + fc.name, "the same faults as faults." + it->second + " (each case must differ)");
+    seen.emplace(flies, fc.name);
     c.fault_cases.push_back(std::move(fc));
   }
   return Ok{};

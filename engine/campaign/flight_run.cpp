@@ -26,6 +26,8 @@ const char* end_name(hil::Session::EndReason end) {
   return "stopped";
 }
 
+Expected<FlightResult> result_from_json(const nlohmann::json& j, const std::string& path);
+
 Status write_json(const std::string& path, const nlohmann::json& j) {
   const std::string tmp = path + ".part";
   {
@@ -58,6 +60,20 @@ Expected<FlightResult> read_result(const std::string& folder) {
   if (!text) return text.error();
   const auto j = nlohmann::json::parse(*text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return Error::input(path + ": not a flight result");
+  try {
+    return result_from_json(j, path);
+  } catch (const nlohmann::json::exception& e) {  // a field of the wrong type: a damaged or hand-edited file
+    return Error::input(path + ": not a flight result (" + e.what() + ")");
+  }
+}
+
+Status write_result(const std::string& folder, const FlightResult& result) {
+  return write_json((std::filesystem::path(folder) / kResultFile).string(), to_json(result));
+}
+
+namespace {
+
+Expected<FlightResult> result_from_json(const nlohmann::json& j, const std::string& path) {
   FlightResult r;
   r.index = j.value("index", std::size_t{0});
   r.id = j.value("id", std::string());
@@ -83,9 +99,7 @@ Expected<FlightResult> read_result(const std::string& folder) {
   return r;
 }
 
-Status write_result(const std::string& folder, const FlightResult& result) {
-  return write_json((std::filesystem::path(folder) / kResultFile).string(), to_json(result));
-}
+}  // namespace
 
 Expected<FlightResult> run_flight(const Campaign& campaign, const Flight& flight, FlightStack& stack, const std::string& out_dir,
                                   const std::atomic<bool>& stop, hil::Session::Observer& observer, bool& stopped) {

@@ -34,13 +34,13 @@ json read_json(const std::string& path) { return json::parse(read_text(path)); }
 /// A folder with a hover of `hover_s` seconds and a campaign over it (2 fault cases x 2 seeds). The
 /// runs' default history goes into it too (XDG_DATA_HOME), never the user's data folder.
 std::string write_campaign(const std::string& dir, double hover_s, const std::string& extra_criteria,
-                           double time_limit_s = 120) {
+                           double time_limit_s = 120, const std::string& campaign_keys = "") {
   ::setenv("XDG_DATA_HOME", dir.c_str(), 1);
   std::ofstream(dir + "/hover.json") << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2, "yaw": 0}, {"t": )" << hover_s
                                      << R"(, "x": 0, "y": 0, "z": 2, "yaw": 0}]})";
   const std::string file = dir + "/c.toml";
-  std::ofstream(file) << "[campaign]\nname = \"e2e\"\ntime_limit_s = " << time_limit_s
-                      << "\n[matrix]\ntrajectories = [\"hover.json\"]\nseeds = [1, 2]\n"
+  std::ofstream(file) << "[campaign]\nname = \"e2e\"\ntime_limit_s = " << time_limit_s << "\n" << campaign_keys
+                      << "[matrix]\ntrajectories = [\"hover.json\"]\nseeds = [1, 2]\n"
                          "[faults]\nnone = []\ngps-loss = [\"gps-loss@2+2\"]\n"
                          "[criteria]\ndisarmed = { figure = \"stack.armed\", equals = false }\n"
                       << extra_criteria
@@ -75,7 +75,7 @@ print(json.dumps(suites))
 TEST(CampaignE2E, ASmallCampaignWritesItsResultsAndJunitAsAConsumerReadsIt) {
   const auto dir = test::temp_dir();
   // A planted criterion no flight meets: each flight fails it, with the figure and its limit.
-  const auto file = write_campaign(dir, 3, "planted = { figure = \"sim_time_s\", max = 1 }\n");
+  const auto file = write_campaign(dir, 3, "planted = { figure = \"sim_time_s\", max = 1 }\n", 120, "report = true\n");
   const std::string out = dir + "/out";
   auto r = test::run_hitl({"--json", "campaign", "run", file, "-j", "2", "--out", out, "--history", dir + "/h.sqlite", "--label",
                            "first"},
@@ -94,7 +94,7 @@ TEST(CampaignE2E, ASmallCampaignWritesItsResultsAndJunitAsAConsumerReadsIt) {
     ASSERT_EQ(f["failures"].size(), 1u) << f.dump();
     EXPECT_EQ(f["failures"][0]["criterion"], "planted");
     const std::string folder = out + "/" + f["folder"].get<std::string>();
-    for (const char* name : {"summary.json", "result.json", "flight.tlog", "log.txt"})
+    for (const char* name : {"summary.json", "result.json", "flight.tlog", "log.txt", "report.html"})
       EXPECT_TRUE(std::filesystem::exists(folder + "/" + name)) << folder << "/" << name;
     const auto figures = read_json(folder + "/summary.json");
     EXPECT_EQ(figures["end"], "trajectory_done");

@@ -163,6 +163,8 @@ TEST_F(CampaignFileTest, BadValuesAreRefusedWithTheirKey) {
             std::string::npos);
   EXPECT_NE(refusal(head + "[matrix]\ntrajectories = [\"hover.json\"]\n[faults]\nbad = [\"gps-lost@3\"]\n", 6)
                 .find("faults.bad[0]: "), std::string::npos);
+  EXPECT_NE(refusal(head + "[matrix]\ntrajectories = [\"hover.json\"]\n[faults]\nnone = []\ncalm = []\n", 7)
+                .find("faults.calm: the same faults as faults.none"), std::string::npos);
   EXPECT_NE(refusal(head + "[matrix]\ntrajectories = [\"hover.json\"]\n[faults]\nnone = [\"gps-loss\"]\n", 6)
                 .find("faults.none: the case \"none\" is the flight without faults"), std::string::npos);
   EXPECT_NE(refusal(head + "[matrix]\ntrajectories = [\"hover.json\"]\n[criteria]\nr = { figure = \"trajectory.rms\", max = 1 }\n", 6)

@@ -4,6 +4,11 @@
 #include "engine/campaign/criteria.h"
 #include "engine/campaign/results.h"
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
 namespace hitl::campaign {
 namespace {
 
@@ -122,6 +127,33 @@ TEST(CampaignResults, JunitHasASuitePerAxisValueAndAFailurePerBrokenCriterion) {
   const auto t = tally({ok, std::nullopt});
   EXPECT_EQ(t.passed, 1u);
   EXPECT_EQ(t.missing, 1u);
+}
+
+}  // namespace
+}  // namespace hitl::campaign
+
+namespace hitl::campaign {
+namespace {
+
+TEST(CampaignResults, ADamagedResultFileIsAnErrorNotACrash) {
+  const auto dir = std::filesystem::temp_directory_path() / ("hitl-result-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  FlightResult r;
+  r.index = 3;
+  r.id = "0123456789ab";
+  r.outcome = "failed";
+  r.verdicts.push_back(Verdict{"tracking", "trajectory.rms_m", false, 0.75, "<= 0.5", "trajectory.rms_m = 0.75, limit <= 0.5"});
+  ASSERT_TRUE(write_result(dir.string(), r));
+  auto back = read_result(dir.string());
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(back->index, 3u);
+  EXPECT_EQ(back->verdicts.at(0).message, "trajectory.rms_m = 0.75, limit <= 0.5");
+  std::ofstream(dir / "result.json") << R"({"index": "three", "outcome": "passed"})";
+  auto damaged = read_result(dir.string());
+  ASSERT_FALSE(damaged);
+  EXPECT_EQ(damaged.error().kind, ErrorKind::Input);
+  EXPECT_NE(damaged.error().message.find("result.json: not a flight result"), std::string::npos) << damaged.error().message;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
