@@ -36,6 +36,11 @@ class FlightStack {
   virtual StackFigures figures() const = 0;
 };
 
+/// The campaign judges what only the recording holds (expectations, a criterion on
+/// ekf_test_ratios.*): each flight reads its .tlog back and its summary has "ekf_test_ratios" and
+/// "events"; otherwise it does not, and they are absent.
+bool reads_recording(const Campaign& campaign);
+
 /// A flight's folder inside the results: flights/<id>/.
 std::string flight_folder(const std::string& out_dir, const Flight& flight);
 inline constexpr const char* kSummaryFile = "summary.json";
