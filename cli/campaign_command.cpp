@@ -303,7 +303,7 @@ void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state
   run->add_option("--out", o->out_dir, "The results folder (default: campaign-NAME)")->type_name("DIR");
   run->add_option("--only", o->only,
                   "Fly flight INDEX alone, in this process, into the results folder (what each child runs)")
-      ->type_name("INDEX");
+      ->check(non_negative_integer())->type_name("INDEX");
   auto* resume = run->add_flag("--resume", o->resume, "Continue a stopped run: fly only the flights without a result");
   auto* rerun = run->add_flag("--rerun-failed", o->rerun_failed, "Fly the flights without a result and those that failed");
   resume->excludes(rerun);
