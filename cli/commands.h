@@ -23,6 +23,7 @@ void add_doctor_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_board_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_bridge_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state);
+void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_completion_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_reference_command(CLI::App& app, GlobalOptions& options, RunState& state);
 void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state);

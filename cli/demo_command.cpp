@@ -84,7 +84,8 @@ std::size_t remove_old_demo_folders(const std::string& current) {
   return removed;
 }
 
-/// A loopback UDP port nobody uses right now (the OS picks it).
+/// A loopback UDP port nobody uses right now (the OS picks it): probed and let go, so another
+/// process could take it before the session binds it; only the clients port's fallback uses it.
 Expected<uint16_t> free_port() {
   net::UdpEndpoint::Config c;
   c.bind_address = "127.0.0.1";
@@ -171,8 +172,8 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
     log_error("demo", trajectory.error().message);
     return exit_code(trajectory.error());
   }
-  // Free loopback ports for the board's instances and the simulator, so a demo never collides
-  // with a real session; the clients port is the usual one when free, so `hitl arm` etc. work.
+  // Loopback ports the OS picks for the board's instances and the simulator (below), so a demo never
+  // collides with a real session; the clients port is the usual one when free, so `hitl arm` etc. work.
   target::BoardConfig board_config;
   board_config.bind_address = "127.0.0.1";
   board_config.lockstep = true;
@@ -190,19 +191,24 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
                                             "(K <= 8 on 2 cores)"));
     }
   }
-  for (uint16_t* port : {&board_config.hil_port, &board_config.gcs_port, &board_config.vio_port, &session.local_port}) {
-    if (px4) break;
-    auto p = free_port();
-    if (!p) {
-      log_error("demo", p.error().message);
-      return exit_code(p.error());
+  // The board binds ports the OS picks and keeps them (no port is probed and let go); the session's
+  // own port is the OS's too, and the board answers whoever spoke to it.
+  board_config.os_picks_ports = true;
+  std::unique_ptr<target::Board> board;
+  if (!px4) {
+    auto created = target::Board::create(board_config);
+    if (!created) {
+      log_error("demo", created.error().message);
+      return exit_code(created.error());
     }
-    *port = *p;
+    board = std::move(created.value());
+    const auto bound = board->ports();
+    session.hil_port = bound.hil_port;
+    session.vio_port = bound.vio_port;
+    session.local_port = 0;
   }
   session.target_ip = "127.0.0.1";
   session.bind_address = "127.0.0.1";
-  session.hil_port = board_config.hil_port;
-  session.vio_port = board_config.vio_port;
   session.lockstep = true;
   session.speed = o.speed;
   session.vehicle = model::x500_vehicle_config();
@@ -239,15 +245,6 @@ int run_demo(const GlobalOptions& g, DemoOptions o) {
     }
   }
 
-  std::unique_ptr<target::Board> board;
-  if (!px4) {
-    auto created = target::Board::create(board_config);
-    if (!created) {
-      log_error("demo", created.error().message);
-      return exit_code(created.error());
-    }
-    board = std::move(created.value());
-  }
   auto sim = hil::Session::create(session);
   if (!sim) {
     log_error("demo", sim.error().message);

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   add_board_command(app, options, state);
   add_bridge_command(app, options, state);
   add_demo_command(app, options, state);
+  add_campaign_command(app, options, state);
   add_report_command(app, options, state);
   add_completion_command(app, options, state);
   add_reference_command(app, options, state);

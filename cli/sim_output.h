@@ -6,13 +6,13 @@
 
 #include "cli/common_options.h"
 #include "engine/hil/session.h"
+#include "engine/hil/snapshot_json.h"
 
 namespace hitl::cli {
 
 /// A fault's start or end as a JSON status object: {"type":"status","fault":{"event":"started",...}}.
 nlohmann::json fault_event_json(const faults::FaultChange& change);
-/// The snapshot as JSON: a "status" line, or the final "summary" (rates over the whole run).
-nlohmann::json snapshot_json(const hil::SessionSnapshot& s, bool final_summary);
+using hil::snapshot_json;  // engine/hil/snapshot_json.h: the status lines and the summary
 /// "t   12.0 s  rtf 1.00  out HIL_SENSOR 250 GPS 10 ODOM  30 Hz  in ACT 200 Hz  ARMED ..."
 std::string status_line(const hil::SessionSnapshot& s);
 /// The text summary after the run, ended for `end` ("duration", "stopped", ...).

@@ -160,12 +160,13 @@ Expected<std::unique_ptr<Board>> Board::create(const BoardConfig& config) {
   if (config.faults.sys_hitl_0) (void)impl->params.set("SYS_HITL", vehicle::ParamValue::int32(0));
   if (config.faults.wrong_cal_acc0_id) (void)impl->params.set("CAL_ACC0_ID", vehicle::ParamValue::int32(kWrongAccelDeviceId));
   if (config.faults.ekf_not_converging) impl->flight->inject_mag_swing(kEkfFaultMagSwing_rad);
-  auto hil = MavlinkInstance::open("HIL instance (--hil-port)", config.bind_address, config.hil_port, impl->messages,
+  auto bound = [&config](uint16_t port) { return config.os_picks_ports ? uint16_t{0} : port; };
+  auto hil = MavlinkInstance::open("HIL instance (--hil-port)", config.bind_address, bound(config.hil_port), impl->messages,
                                    config.sysid, config.compid);
   if (!hil) return hil.error();
   impl->hil = std::move(hil.value());
   if (config.gcs_port != 0) {
-    auto gcs = MavlinkInstance::open("GCS instance (--gcs-port)", config.bind_address, config.gcs_port, impl->messages,
+    auto gcs = MavlinkInstance::open("GCS instance (--gcs-port)", config.bind_address, bound(config.gcs_port), impl->messages,
                                      config.sysid, config.compid);
     if (!gcs) return gcs.error();
     impl->gcs = std::move(gcs.value());
@@ -174,7 +175,7 @@ Expected<std::unique_ptr<Board>> Board::create(const BoardConfig& config) {
     net::UdpEndpoint::Config c;
     c.name = "VIO listener (--vio-port)";
     c.bind_address = config.bind_address;
-    c.bind_port = config.vio_port;
+    c.bind_port = bound(config.vio_port);
     auto ep = net::UdpEndpoint::open(c);
     if (!ep) return ep.error();
     impl->vio.emplace(std::move(ep.value()));
@@ -190,6 +191,14 @@ Expected<std::unique_ptr<Board>> Board::create(const BoardConfig& config) {
 
 Board::Board(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Board::~Board() = default;
+
+BoardPorts Board::ports() const {
+  BoardPorts p;
+  p.hil_port = impl_->hil->port();
+  if (impl_->gcs) p.gcs_port = impl_->gcs->port();
+  if (impl_->vio) p.vio_port = impl_->vio->local_address().port();
+  return p;
+}
 
 std::string Board::describe() const {
   std::string out = "HIL instance on UDP " + std::to_string(impl_->hil->port());

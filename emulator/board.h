@@ -25,6 +25,9 @@ struct BoardConfig {
   uint16_t hil_port = kBoardHilPort;      ///< --hil-port: the primary (HIL) instance
   uint16_t gcs_port = kBoardGcsPort;      ///< --gcs-port: the GCS instance (0: none)
   uint16_t vio_port = kBoardVioPort;      ///< --vio-port: voxl-hitl-vio-server's listener (0: none)
+  /// Each listener that is on (its port not 0) binds a port the OS picks instead (Board::ports()
+  /// says which): a campaign's parallel boards, each keeping its sockets from the start.
+  bool os_picks_ports = false;
   bool lockstep = false;   ///< --lockstep: the board's clock is HIL_SENSOR.time_usec and each HIL_SENSOR gets one answer
   double duration_s = 0;   ///< --duration: stop after this much board time (0: until stopped)
   uint8_t sysid = 1;
@@ -60,6 +63,13 @@ struct BoardSnapshot {
   std::string dsp_hitl_status;
 };
 
+/// The ports the board's sockets are bound to (a port 0 in BoardConfig: the one the OS gave).
+struct BoardPorts {
+  uint16_t hil_port = 0;
+  uint16_t gcs_port = 0;  ///< 0: no GCS instance
+  uint16_t vio_port = 0;  ///< 0: no VIO listener
+};
+
 class Board {
  public:
   class Observer {
@@ -75,6 +85,9 @@ class Board {
   Expected<EndReason> run(const std::atomic<bool>& stop, Observer& observer);
   BoardSnapshot snapshot() const;
   std::string describe() const;
+  /// Where the board listens: with port 0 in the config, the ports the OS picked (the board keeps
+  /// the sockets, so nothing else can take them: no bind-then-close probing).
+  BoardPorts ports() const;
 
  private:
   struct Impl;

@@ -10,6 +10,7 @@ packages=(
   build-essential cmake ccache pkg-config
   libcli11-dev libeigen3-dev libsimbody-dev libncurses-dev nlohmann-json3-dev
   libpugixml-dev libgeographiclib-dev libedit-dev
+  libtomlplusplus-dev libsqlite3-dev  # hitl campaign: its TOML files and its history database (docs/campaigns.md)
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
 )
@@ -27,6 +28,8 @@ if [ "${1:-}" = "--test" ]; then
   # Ubuntu ships Chromium only as a snap (its deb is a stub that installs the snap): there the test
   # skips outside CI instead; Debian's deb is the browser itself.
   if ! grep -qs '^ID=ubuntu' /etc/os-release; then packages+=(chromium); fi
+  # hitl campaign's JUnit XML read back by a real consumer (tests/cli/campaign_e2e_test.cpp).
+  packages+=(python3-junitparser)
   command -v node >/dev/null 2>&1 || packages+=(nodejs)
   command -v npm >/dev/null 2>&1 || packages+=(npm)
 fi

@@ -3,7 +3,7 @@
 # its seed corpus (tests/fuzz/corpus/TARGET, when there is one) and prints its exec count.
 #   tests/fuzz/run.sh BUILD_DIR SECONDS [TARGET]   (BUILD_DIR configured with -DHITL_FUZZ=ON, clang)
 # TARGET: frame_parser, tlog, config, vehicle_files, scenario, board_replies, adb_framing, vio_server,
-# link_spec, px4_console, ulog.
+# link_spec, px4_console, ulog, campaign_file.
 # Exits non-zero on any finding (crash, sanitizer report, trapped invariant, leak, timeout,
 # out-of-memory); the reproducer is kept in BUILD_DIR/fuzz-artifacts/.
 set -euo pipefail

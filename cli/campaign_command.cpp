@@ -1,0 +1,330 @@
+// hitl campaign run FILE: a campaign's flights (docs/campaigns.md), each as a child process of this
+// hitl (`--only INDEX`, the unit of work), N at a time; the progress on a terminal or JSON status
+// lines; the results folder (per flight summary.json, result.json, flight.tlog, log.txt; the
+// campaign's summary.json and junit.xml).
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include "cli/board_stack.h"
+#include "cli/commands.h"
+#include "cli/number_check.h"
+#include "cli/parse_errors.h"
+#include "engine/campaign/campaign_file.h"
+#include "engine/campaign/campaign_run.h"
+#include "engine/campaign/flight.h"
+#include "engine/campaign/flight_run.h"
+#include "engine/campaign/history.h"
+#include "engine/campaign/results.h"
+#include "engine/faults/fault_spec.h"
+
+namespace hitl::cli {
+
+namespace {
+
+struct CampaignRunOptions {
+  std::string file;
+  std::size_t jobs = 0;  ///< 0: the cores
+  std::string out_dir;   ///< empty: campaign-<name>
+  std::optional<std::size_t> only;
+  bool resume = false;
+  bool rerun_failed = false;
+  std::string history;  ///< --history FILE (empty: the default, campaign::default_history_path())
+  std::string label;    ///< --label TEXT
+  bool no_history = false;
+};
+
+struct CampaignHistoryOptions {
+  std::string campaign;  ///< empty: the campaign of the latest run
+  std::string history;
+  std::size_t last_runs = 10;
+};
+
+/// --history FILE, or the default under the user's data folder.
+Expected<std::string> history_path(const std::string& given) {
+  if (!given.empty()) return given;
+  return campaign::default_history_path();
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+/// The board's and the session's events in a flight's process (its log.txt): warnings and errors,
+/// everything with -v.
+class FlightEvents : public target::Board::Observer, public hil::Session::Observer {
+ public:
+  explicit FlightEvents(const GlobalOptions& g) : g_(g) {}
+  void on_event(const target::BoardEvent& e) override {
+    if (e.severity == Severity::Info && g_.verbosity == 0) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::cerr << "hitl campaign: board: " << e.text << '\n';
+  }
+  void on_event(const hil::SessionEvent& e) override {
+    if (e.severity == hil::Severity::Info && g_.verbosity == 0) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::cerr << "hitl campaign: " << e.text << '\n';
+  }
+
+ private:
+  const GlobalOptions& g_;
+  std::mutex mutex_;
+};
+
+std::string duration_text(double s) {
+  char text[32];
+  if (s >= 3600) std::snprintf(text, sizeof text, "%dh%02dm", static_cast<int>(s / 3600), static_cast<int>(std::fmod(s, 3600) / 60));
+  else if (s >= 60) std::snprintf(text, sizeof text, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(std::fmod(s, 60)));
+  else std::snprintf(text, sizeof text, "%.0fs", s);
+  return text;
+}
+
+/// The progress line on a terminal (redrawn in place on stderr), a line per flight otherwise, or
+/// JSON status lines with --json.
+class RunPrinter : public campaign::RunObserver {
+ public:
+  RunPrinter(const GlobalOptions& g, std::string name) : g_(g), name_(std::move(name)), tty_(::isatty(STDERR_FILENO) == 1) {}
+  void on_started(const campaign::Flight& f, pid_t pid) override {
+    if (g_.json)
+      print_json_line({{"type", "status"}, {"event", "started"}, {"index", f.index}, {"id", f.id}, {"name", f.name}, {"pid", pid}});
+  }
+  void on_finished(const campaign::Flight& f, const campaign::FlightResult& r) override {
+    if (g_.json) {
+      nlohmann::json failures = nlohmann::json::array();
+      for (const auto& v : r.verdicts)
+        if (!v.ok) failures.push_back(v.criterion + ": " + v.message);
+      print_json_line({{"type", "status"}, {"event", "finished"}, {"index", f.index}, {"id", f.id}, {"name", f.name},
+                       {"outcome", r.outcome}, {"reason", r.reason}, {"failures", failures}, {"summary_line", r.summary_line}});
+      return;
+    }
+    if (g_.quiet && r.outcome == "passed") return;
+    clear_line();
+    std::string line = "hitl campaign: " + r.outcome + "  " + r.summary_line;
+    for (const auto& v : r.verdicts)
+      if (!v.ok && v.criterion != "flown") line += "\n    " + v.criterion + ": " + v.message;
+    std::cerr << line << '\n';
+  }
+  void on_progress(const campaign::Progress& p) override {
+    if (g_.json) {
+      print_json_line({{"type", "status"}, {"event", "progress"}, {"total", p.total}, {"done", p.done}, {"passed", p.passed},
+                       {"failed", p.failed}, {"running", p.running}, {"kept", p.kept}, {"elapsed_s", p.elapsed_s},
+                       {"eta_s", p.eta_s ? nlohmann::json(*p.eta_s) : nlohmann::json(nullptr)}});
+      return;
+    }
+    if (!tty_ || g_.quiet) return;
+    char line[200];
+    std::snprintf(line, sizeof line, "campaign %s: %zu/%zu done, %zu failed, %zu running, %s elapsed, ETA %s", name_.c_str(),
+                  p.done, p.total, p.failed, p.running, duration_text(p.elapsed_s).c_str(),
+                  p.eta_s ? duration_text(*p.eta_s).c_str() : "?");
+    std::cerr << "\r\033[K" << line << std::flush;
+    drawn_ = true;
+  }
+  void clear_line() {
+    if (drawn_) std::cerr << "\r\033[K";
+    drawn_ = false;
+  }
+
+ private:
+  const GlobalOptions& g_;
+  std::string name_;
+  bool tty_;
+  bool drawn_ = false;
+};
+
+/// This hitl, for the children.
+std::string self_path() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("hitl") : p.string();
+}
+
+int run_one(const GlobalOptions& g, const campaign::Campaign& c, const std::vector<campaign::Flight>& flights,
+            const CampaignRunOptions& o, const std::string& out_dir) {
+  if (*o.only >= flights.size())
+    return log_error("campaign", Error::usage("--only " + std::to_string(*o.only) + ": the campaign has flights 0 to " +
+                                              std::to_string(flights.size() - 1)));
+  const auto& flight = flights[*o.only];
+  FlightEvents events(g);
+  EmulatedBoardStack stack(events);
+  bool stopped = false;
+  log_info(g, "hitl campaign: flight " + std::to_string(flight.index) + " " + flight.name + " (id " + flight.id + ") into " +
+                  campaign::flight_folder(out_dir, flight));
+  auto r = campaign::run_flight(c, flight, stack, out_dir, stop_flag_on_signals(), events, stopped);
+  if (stopped) {
+    log_error("campaign", "flight " + flight.name + " stopped before its end; no result written");
+    return kExitFailed;
+  }
+  if (!r) return log_error("campaign", r.error().prefixed("flight " + flight.name + ": "));
+  if (g.json) {
+    auto j = campaign::to_json(*r);
+    j["type"] = "summary";
+    print_json_line(j);
+  } else {
+    std::cout << r->outcome << ": " << r->summary_line << '\n';
+    for (const auto& v : r->verdicts)
+      if (!v.ok) std::cout << "  " << v.criterion << ": " << v.message << '\n';
+  }
+  return r->outcome == "passed" ? kExitOk : kExitFailed;
+}
+
+int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
+  const faults::Suggest suggest = [](const std::string& name) { return closest(name, faults::fault_names()).value_or(""); };
+  auto c = campaign::load_campaign(o.file, suggest);
+  if (!c) return log_error("campaign", c.error());
+  const auto flights = campaign::expand(*c);
+  const std::string out_dir = o.out_dir.empty() ? "campaign-" + c->name : o.out_dir;
+  if (o.only) return run_one(g, *c, flights, o, out_dir);
+  std::string history;
+  if (!o.no_history) {
+    auto h = history_path(o.history);
+    if (!h) return log_error("campaign", h.error().prefixed("--history: "));
+    history = *h;
+  }
+  const std::string started_utc = utc_now();
+
+  std::error_code ec;
+  const std::string file_abs = std::filesystem::absolute(o.file, ec).string();
+  const std::string out_abs = std::filesystem::absolute(out_dir, ec).string();
+  campaign::RunOptions ro;
+  ro.out_dir = out_dir;
+  ro.jobs = o.jobs != 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+  ro.mode = o.rerun_failed ? campaign::RunMode::RerunFailed : o.resume ? campaign::RunMode::Resume : campaign::RunMode::Fresh;
+  ro.program = self_path();
+  const int verbosity = g.verbosity;
+  ro.child_args = [file_abs, out_abs, verbosity](const campaign::Flight& f) {
+    std::vector<std::string> args{"campaign", "run", file_abs, "--only", std::to_string(f.index), "--out", out_abs};
+    for (int i = 0; i < verbosity; ++i) args.push_back("-v");
+    return args;
+  };
+  log_info(g, "hitl campaign: " + c->name + ": " + std::to_string(flights.size()) + " flights (" +
+                  std::to_string(c->trajectories.size()) + " trajectories x " + std::to_string(c->fault_cases.size()) +
+                  " fault cases x " + std::to_string(c->seeds.size()) + " seeds x " + std::to_string(c->speeds.size()) +
+                  " speeds) against the emulated board, " + std::to_string(ro.jobs) + " at a time, into " + out_dir +
+                  " (Ctrl-C stops; --resume continues)");
+  RunPrinter printer(g, c->name);
+  auto outcome = campaign::run_campaign(*c, flights, ro, stop_flag_on_signals(), printer);
+  printer.clear_line();
+  if (!outcome) return log_error("campaign", outcome.error());
+  if (auto ok = campaign::write_results(out_dir, *c, flights, outcome->results, outcome->wall_s, outcome->stopped); !ok)
+    return log_error("campaign", ok.error());
+  const auto t = campaign::tally(outcome->results);
+  bool history_failed = false;
+  if (!history.empty()) {
+    campaign::RunRecord record{o.label, started_utc, outcome->wall_s, outcome->stopped};
+    if (auto ok = campaign::record_run(history, *c, flights, outcome->results, record); !ok) {
+      log_error("campaign", ok.error().prefixed("--history: "));
+      history_failed = true;
+    }
+  }
+  if (g.json) {
+    print_json_line(campaign::campaign_summary_json(*c, flights, outcome->results, outcome->wall_s, outcome->stopped));
+  } else {
+    char line[256];
+    std::snprintf(line, sizeof line, "campaign %s: %zu flights: %zu passed, %zu failed, %zu errors, %zu not flown; %.1f s", c->name.c_str(),
+                  t.flights, t.passed, t.failed, t.errors, t.missing, outcome->wall_s);
+    std::cout << line << (outcome->stopped ? " (stopped: --resume flies the rest)" : "") << '\n'
+              << "results: " << out_dir << "/ (" << campaign::kCampaignSummaryFile << ", " << campaign::kJunitFile
+              << ", flights/<id>/)\n";
+    if (!history.empty() && !history_failed) std::cout << "history: " << history << " (hitl campaign history)\n";
+  }
+  return t.passed == t.flights && !history_failed ? kExitOk : kExitFailed;
+}
+
+int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o) {
+  auto path = history_path(o.history);
+  if (!path) return log_error("campaign", path.error().prefixed("--history: "));
+  std::string name = o.campaign;
+  if (name.empty()) {
+    auto names = campaign::history_campaigns(*path);
+    if (!names) return log_error("campaign", names.error());
+    if (names->empty()) return log_error("campaign", Error::input("history " + *path + ": no runs yet"));
+    name = names->front();
+  }
+  auto h = campaign::read_history(*path, name, o.last_runs);
+  if (!h) return log_error("campaign", h.error());
+  bool regression = false;
+  for (const auto& t : h->trends) regression = regression || t.regression;
+  if (g.json) {
+    nlohmann::json trends = nlohmann::json::array();
+    for (const auto& t : h->trends) {
+      nlohmann::json points = nlohmann::json::array();
+      for (const auto& p : t.points)
+        points.push_back({{"run", p.run}, {"label", p.label}, {"started_utc", p.started_utc}, {"flights", p.flights},
+                          {"failed", p.failed}, {"mean", p.flights > 0 ? nlohmann::json(p.mean) : nlohmann::json(nullptr)},
+                          {"worst", p.flights > 0 ? nlohmann::json(p.worst) : nlohmann::json(nullptr)}});
+      trends.push_back({{"criterion", t.criterion}, {"figure", t.figure}, {"limit", t.limit}, {"points", points},
+                        {"regression", t.regression}, {"verdict", t.verdict}});
+    }
+    print_json_line({{"type", "summary"}, {"campaign", h->campaign}, {"history", *path}, {"runs", h->runs},
+                     {"regression", regression}, {"trends", trends}});
+  } else {
+    std::cout << "campaign " << h->campaign << ": " << h->runs << " runs in " << *path << "\n";
+    for (const auto& t : h->trends) {
+      std::cout << "\n" << t.criterion << " (" << t.figure << " " << t.limit << ")\n";
+      for (const auto& p : t.points) {
+        char line[256];
+        if (p.flights > 0)
+          std::snprintf(line, sizeof line, "  run %-4lld %-20s %-16s mean %-10.4g worst %-10.4g failed %zu", static_cast<long long>(p.run),
+                        p.started_utc.c_str(), p.label.empty() ? "-" : p.label.c_str(), p.mean, p.worst, p.failed);
+        else
+          std::snprintf(line, sizeof line, "  run %-4lld %-20s %-16s failed %zu", static_cast<long long>(p.run), p.started_utc.c_str(),
+                        p.label.empty() ? "-" : p.label.c_str(), p.failed);
+        std::cout << line << '\n';
+      }
+      std::cout << "  " << t.verdict << '\n';
+    }
+  }
+  return regression ? kExitFailed : kExitOk;
+}
+
+}  // namespace
+
+void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state) {
+  auto* sub = app.add_subcommand("campaign", "Fly a matrix of flights (trajectories x faults x seeds) unattended: results, JUnit XML");
+  sub->require_subcommand(1);
+  sub->footer("The campaign file: docs/campaigns.md.");
+  auto o = std::make_shared<CampaignRunOptions>();
+  auto* run = sub->add_subcommand(
+      "run", "Run a campaign file's flights against the emulated board, in parallel, into a results folder");
+  run->add_option("FILE", o->file, "The campaign file (TOML, docs/campaigns.md)")->required()->check(CLI::ExistingFile)
+      ->type_name("FILE.toml");
+  run->add_option("-j,--jobs", o->jobs, "Flights at a time (default: the cores)")->check(number_in(1, 256))->type_name("N");
+  run->add_option("--out", o->out_dir, "The results folder (default: campaign-NAME)")->type_name("DIR");
+  run->add_option("--only", o->only,
+                  "Fly flight INDEX alone, in this process, into the results folder (what each child runs)")
+      ->check(non_negative_integer())->type_name("INDEX");
+  auto* resume = run->add_flag("--resume", o->resume, "Continue a stopped run: fly only the flights without a result");
+  auto* rerun = run->add_flag("--rerun-failed", o->rerun_failed, "Fly the flights without a result and those that failed");
+  resume->excludes(rerun);
+  auto* history = run->add_option("--history", o->history,
+                                  "Add this run to the history database (SQLite; default $XDG_DATA_HOME/hitl/campaigns.sqlite, "
+                                  "~/.local/share/hitl/campaigns.sqlite without XDG_DATA_HOME)")
+                      ->type_name("FILE");
+  run->add_option("--label", o->label, "Name this run in the history: a commit, a firmware version")->type_name("TEXT");
+  run->add_flag("--no-history", o->no_history, "Keep this run out of the history")->excludes(history);
+  run->footer("Exit: 0 when every flight passed, 1 otherwise.");
+  run->callback([&options, &state, o]() { state.exit_code = run_campaign_command(options, *o); });
+
+  auto ho = std::make_shared<CampaignHistoryOptions>();
+  auto* hist = sub->add_subcommand("history", "Per-criterion trends of a campaign's runs from the history, regressions flagged");
+  hist->add_option("NAME", ho->campaign, "The campaign (default: the one run last)");
+  hist->add_option("--history", ho->history, "The history database (default: as hitl campaign run)")->type_name("FILE");
+  hist->add_option("--last", ho->last_runs, "How many of the latest runs to show (at least 2)")->capture_default_str()
+      ->check(number_in(2, 1000))->type_name("N");
+  hist->footer("A regression: the latest run's mean (failures for an equals criterion) worse than the runs before it by more "
+               "than their spread. Exit: 0 none, 1 a regression, 2 no such history or campaign.");
+  hist->callback([&options, &state, ho]() { state.exit_code = run_history_command(options, *ho); });
+}
+
+}  // namespace hitl::cli
