@@ -45,11 +45,16 @@ std::string html_escaped(const std::string& text) {
   return out;
 }
 
-std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, const std::vector<std::string>& svgs) {
+std::string page_start(const FlightLog& log, const std::string& extra_head) {
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>hitl report: " << html_escaped(log.path)
-    << "</title>\n<style>" << kStyle << "</style></head><body>\n";
+    << "</title>\n<style>" << kStyle << "</style>" << extra_head << "</head><body>\n";
   h << "<h1>hitl report: " << html_escaped(log.path) << "</h1>\n";
+  return h.str();
+}
+
+std::string summary_sections(const FlightLog& log) {
+  std::ostringstream h;
   // Summary.
   h << "<h2>Summary</h2>\n<table id=\"summary\">\n";
   auto row = [&](const std::string& name, const std::string& value) {
@@ -89,24 +94,39 @@ std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, co
     for (const auto& m : log.missing) h << "<li>" << html_escaped(m) << "</li>\n";
     h << "</ul>\n";
   }
-  // Plots.
-  h << "<h2>Plots</h2>\n<p class=\"legend\">Events on the time axes: <span><i class=\"swatch\" style=\"border-color:#2ca02c\"></i>info</span>"
-       "<span><i class=\"swatch\" style=\"border-color:#1f77b4\"></i>notice</span><span><i class=\"swatch\" "
-       "style=\"border-color:#ff7f0e\"></i>warning</span><span><i class=\"swatch\" style=\"border-color:#d62728\"></i>error</span></p>\n";
-  for (std::size_t i = 0; i < plots.size() && i < svgs.size(); ++i) {
-    nlohmann::json series = nlohmann::json::array();
-    for (const auto& s : plots[i].series) series.push_back({{"title", s.title}, {"points", s.x.size()}, {"samples", s.samples}});
-    h << "<figure id=\"plot-" << plots[i].id << "\" data-series=\"" << html_escaped(series.dump()) << "\">\n"
-      << inline_svg(svgs[i]) << "\n";
-    if (!plots[i].note.empty()) h << "<figcaption>" << html_escaped(plots[i].note) << "</figcaption>\n";
-    h << "</figure>\n";
-  }
-  // Events.
+  return h.str();
+}
+
+std::string figure_html(const Plot& plot, const std::string& inner, const std::string& css_class) {
+  nlohmann::json series = nlohmann::json::array();
+  for (const auto& s : plot.series) series.push_back({{"title", s.title}, {"points", s.x.size()}, {"samples", s.samples}});
+  std::string h = "<figure id=\"plot-" + plot.id + "\"" + (css_class.empty() ? "" : " class=\"" + css_class + "\"") +
+                  " data-series=\"" + html_escaped(series.dump()) + "\">\n" + inner + "\n";
+  if (!plot.note.empty()) h += "<figcaption>" + html_escaped(plot.note) + "</figcaption>\n";
+  return h + "</figure>\n";
+}
+
+std::string svg_figure(const Plot& plot, const std::string& svg) { return figure_html(plot, inline_svg(svg)); }
+
+std::string events_section(const FlightLog& log) {
+  std::ostringstream h;
   h << "<h2>Events</h2>\n<table id=\"events\"><tr><th>t (s)</th><th>from</th><th>severity</th><th>text</th></tr>\n";
   for (const auto& e : log.events)
     h << "<tr class=\"sev-" << to_string(e.severity) << "\"><td>" << fixed(e.t_s, 2) << "</td><td>" << html_escaped(e.source)
       << "</td><td>" << to_string(e.severity) << "</td><td>" << html_escaped(e.text) << "</td></tr>\n";
-  h << "</table>\n</body></html>\n";
+  h << "</table>\n";
+  return h.str();
+}
+
+std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, const std::vector<std::string>& svgs) {
+  std::ostringstream h;
+  h << page_start(log, "") << summary_sections(log);
+  // Plots.
+  h << "<h2>Plots</h2>\n<p class=\"legend\">Events on the time axes: <span><i class=\"swatch\" style=\"border-color:#2ca02c\"></i>info</span>"
+       "<span><i class=\"swatch\" style=\"border-color:#1f77b4\"></i>notice</span><span><i class=\"swatch\" "
+       "style=\"border-color:#ff7f0e\"></i>warning</span><span><i class=\"swatch\" style=\"border-color:#d62728\"></i>error</span></p>\n";
+  for (std::size_t i = 0; i < plots.size() && i < svgs.size(); ++i) h << svg_figure(plots[i], svgs[i]);
+  h << events_section(log) << "</body></html>\n";
   return h.str();
 }
 

@@ -1,6 +1,7 @@
-// hitl report through the real binary: the demo's report rendered in headless Chromium (not blank,
-// and each plot's SVG holds the series its figure claims, with as many points as it says, of as
-// many samples as the recording holds); a plain MAVLink peer's log (hitl target recorded by hitl
+// hitl report through the real binary: the demo's report rendered in headless Chromium (not blank;
+// its script runs without an error and zooming one time plot zooms them all), and each plot holds
+// the series its figure claims (the interactive page's data, the static page's SVG), with as many
+// points as it says, of as many samples as the recording holds; a plain MAVLink peer's log (hitl target recorded by hitl
 // inspect: no simulator, no pilot) gives a report of what it has and says what it lacks.
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <tuple>
 
 #include "base/contract/session_status.h"
 #include "base/mavlink/enums.h"
@@ -88,9 +90,23 @@ std::size_t coordinate_pairs(const std::string& svg) {
   return pairs;
 }
 
-/// Each figure's claims and what its SVG draws: figure id -> series in plot order.
+/// The interactive page's data (<script type="application/json" id="hitl-data">); null when none.
+nlohmann::json page_data(const std::string& html) {
+  const std::string open = "<script type=\"application/json\" id=\"hitl-data\">";
+  const auto at = html.find(open);
+  if (at == std::string::npos) return nullptr;
+  const auto start = at + open.size();
+  return nlohmann::json::parse(html.substr(start, html.find("</script>", start) - start));
+}
+
+/// Each figure's claims and what it draws (its SVG's paths; a time plot of the interactive page, the
+/// points of its series in the page's data): figure id -> series in plot order.
 std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& html) {
   std::map<std::string, std::vector<SeriesClaim>> out;
+  const auto page = page_data(html);
+  std::map<std::string, nlohmann::json> data_plots;
+  if (!page.is_null())
+    for (const auto& p : page["plots"]) data_plots[p["id"]] = p;
   const std::string open = "<figure id=\"plot-";
   for (std::size_t at = 0; (at = html.find(open, at)) != std::string::npos;) {
     const auto id_end = html.find('"', at + open.size());
@@ -104,7 +120,16 @@ std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& ht
     for (std::size_t k = 0; k < claims.size(); ++k) {
       SeriesClaim c{claims[k]["title"], claims[k]["points"], claims[k]["samples"], 0};
       const auto g = fig.find("<g id=\"gnuplot_plot_" + std::to_string(k + 1) + "\"");
-      if (g == std::string::npos) {
+      if (fig.find("class=\"time-plot\"") != std::string::npos) {
+        const auto& p = data_plots[id];
+        if (p.is_null() || k >= p["series"].size()) {
+          c.title = "(no data on the page) " + c.title;
+        } else {
+          if (p["series"][k]["title"] != c.title) c.title = "(another series in the data) " + c.title;
+          c.drawn = p["series"][k]["t"].size();
+          EXPECT_EQ(p["series"][k]["y"].size(), c.drawn) << id << " / " << c.title;
+        }
+      } else if (g == std::string::npos) {
         c.title = "(no group in the SVG) " + c.title;
       } else {
         const std::string group = group_at(fig, g);
@@ -175,6 +200,41 @@ std::string screenshot(const std::string& chromium, const std::string& html, con
   return "";
 }
 
+/// What the page's script did in headless Chromium: the page with a probe added (an error and
+/// console.error/warn catcher before every script, and after them a script that zooms the second
+/// time plot to 2 s and reads every time plot's x range, then clicks the first series' name in the
+/// first plot's legend), its DOM dumped; the probe's JSON, or {"failure": why}.
+nlohmann::json probe_in_chromium(const std::string& chromium, const std::string& html, const std::string& dir) {
+  std::string page = read_file(html);
+  const std::string catcher = R"(<script>window.hitlErrors=[];window.addEventListener('error',function(e){hitlErrors.push('error: '+e.message)});
+['error','warn'].forEach(function(k){var f=console[k];console[k]=function(){hitlErrors.push(k+': '+Array.prototype.join.call(arguments,' '));f.apply(console,arguments)}});</script>)";
+  const std::string probe = R"(<script>(function(){var out={errors:hitlErrors,ids:[],before:[],after:[]};
+try{var r=window.hitlReport;out.ids=r.ids;out.drawn_ms=r.drawn_ms;
+out.before=r.graphs.map(function(g){return g.xAxisRange()});
+var g=r.graphs[1],x=g.xAxisRange(),a=x[0]+0.4*(x[1]-x[0]);out.zoom=[a,a+2];g.updateOptions({dateWindow:out.zoom});
+out.after=r.graphs.map(function(g){return g.xAxisRange()});
+var item=document.querySelector('#plot-'+r.ids[0]+' .values [data-i="0"]');out.legend_item=item?item.textContent:null;
+if(item)item.click();out.visible_after_click=r.graphs[0].visibility()[0];
+out.canvases=document.querySelectorAll('figure.time-plot canvas').length;
+}catch(e){out.errors.push('probe: '+e)}
+var pre=document.createElement('pre');pre.id='hitl-probe';pre.textContent=JSON.stringify(out);document.body.appendChild(pre)})();</script>)";
+  const auto head = page.find("</head>"), body = page.rfind("</body>");
+  if (head == std::string::npos || body == std::string::npos) return {{"failure", "no </head> or </body> in the page"}};
+  page.insert(body, probe);
+  page.insert(head, catcher);
+  const std::string probed = dir + "/probed.html";
+  std::ofstream(probed) << page;
+  auto r = test::run_program({chromium, "--headless", "--no-sandbox", "--disable-gpu", "--user-data-dir=" + dir + "/profile",
+                              "--window-size=1200,3200", "--dump-dom", "file://" + probed},
+                             180s);
+  if (r.exit_code != 0) return {{"failure", "chromium exit " + std::to_string(r.exit_code) + ": " + r.err}};
+  const std::string open = "<pre id=\"hitl-probe\">";
+  const auto at = r.out.find(open);
+  if (at == std::string::npos) return {{"failure", "no probe in the dumped DOM (the page's script did not run to its end?)"}};
+  const auto start = at + open.size();
+  return nlohmann::json::parse(unescaped(r.out.substr(start, r.out.find("</pre>", start) - start)));
+}
+
 TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   const std::string dir = test::temp_dir();
   const std::string tlog = dir + "/demo.tlog", html = dir + "/demo.html";
@@ -184,51 +244,64 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   ASSERT_EQ(summary["type"], "summary") << demo.out;
   EXPECT_EQ(summary["report"]["path"], html);
   EXPECT_EQ(summary["recording"], tlog);
+  EXPECT_EQ(summary["report"]["interactive"], true) << summary["report"].dump();
   const std::string page = read_file(html);
-  for (const char* reach : {"<script", "src=\"http", "href=\"http", "href='http", "url(http", "@import"})
+  // One file that opens offline: its scripts and styles inline, nothing fetched.
+  for (const char* reach : {"<script src", "src=\"http", "href=\"http", "href='http", "url(http", "@import", "<link"})
     EXPECT_EQ(page.find(reach), std::string::npos) << "the page must not reach the network: " << reach;
+  EXPECT_NE(page.find("Dygraph.synchronize = synchronize"), std::string::npos) << "the synchronizer is inlined";
+
+  // The static page of the same recording: gnuplot's SVGs, no script.
+  auto static_run = test::run_hitl({"--json", "report", tlog, "--static", "-o", dir + "/static.html"});
+  ASSERT_EQ(static_run.exit_code, 0) << static_run.err;
+  EXPECT_EQ(test::last_json_line(static_run.out)["interactive"], false);
+  const std::string static_page = read_file(dir + "/static.html");
+  EXPECT_EQ(static_page.find("<script"), std::string::npos);
 
   // The summary table's tracking figures are the session's.
   const auto& trajectory = summary["trajectory"];
-  EXPECT_NE(page.find("RMS " + fixed2(trajectory["rms_m"]) + " m, max " + fixed2(trajectory["max_m"]) + " m (" +
-                      std::to_string(trajectory["samples"].get<uint64_t>()) + " samples)"),
-            std::string::npos)
-      << trajectory.dump();
+  const std::string tracking_row = "RMS " + fixed2(trajectory["rms_m"]) + " m, max " + fixed2(trajectory["max_m"]) + " m (" +
+                                   std::to_string(trajectory["samples"].get<uint64_t>()) + " samples)";
+  EXPECT_NE(page.find(tracking_row), std::string::npos) << trajectory.dump();
+  EXPECT_NE(static_page.find(tracking_row), std::string::npos) << trajectory.dump();
 
-  // Each plot's series: in its SVG, drawn with the points claimed, of the samples recorded.
+  // Each plot's series, on both pages: drawn with the points claimed, of the samples recorded.
   const auto counts = count_recording(tlog);
-  const auto figures = figures_of(page);
-  for (const char* id : {"top-view", "altitude", "tracking-error", "attitude-roll", "attitude-pitch", "attitude-yaw", "motors",
-                         "rates", "jitter", "loop-latency", "ekf"})
-    EXPECT_TRUE(figures.count(id)) << "no figure " << id;
-  for (const auto& [id, series] : figures) {
-    for (const auto& s : series) {
-      EXPECT_EQ(s.drawn, s.points) << id << " / " << s.title;
-      EXPECT_GT(s.points, 0u) << id << " / " << s.title;
-      EXPECT_LE(s.points, 2600u) << id << " / " << s.title;
-    }
-  }
-  auto samples = [&](const std::string& id, const std::string& title) -> std::size_t {
-    if (!figures.count(id)) return 0;
-    for (const auto& s : figures.at(id))
-      if (s.title == title) return s.samples;
-    return 0;
-  };
   EXPECT_GT(counts.truth, 1000u);
-  EXPECT_EQ(samples("top-view", "truth"), counts.truth);
-  EXPECT_EQ(samples("top-view", "setpoint"), counts.setpoint);
-  EXPECT_EQ(samples("top-view", "estimate"), counts.estimate);
-  EXPECT_EQ(samples("altitude", "truth"), counts.truth);
-  EXPECT_EQ(samples("tracking-error", "error against truth"), counts.tracking);
   EXPECT_EQ(counts.tracking, trajectory["samples"].get<std::size_t>());
-  EXPECT_EQ(samples("attitude-roll", "estimate"), counts.attitude);
-  EXPECT_EQ(samples("motors", "motor 1"), counts.actuators);
   // The demo is lockstep against hitl target: its loop latency is measured and recorded each second.
   EXPECT_GT(counts.latency_p99, 10u);
-  EXPECT_EQ(samples("loop-latency", "p50"), counts.latency_p50);
-  EXPECT_EQ(samples("loop-latency", "p99"), counts.latency_p99);
-  EXPECT_EQ(samples("loop-latency", "max"), counts.latency_max);
-  EXPECT_EQ(page.find("the loop latency"), std::string::npos) << "the demo's log has it";
+  for (const auto& [which, text, most_points] : {std::tuple{"interactive", &page, 10100u}, std::tuple{"static", &static_page, 2600u}}) {
+    SCOPED_TRACE(which);
+    const auto figures = figures_of(*text);
+    for (const char* id : {"top-view", "altitude", "tracking-error", "attitude-roll", "attitude-pitch", "attitude-yaw", "motors",
+                           "rates", "jitter", "loop-latency", "ekf"})
+      EXPECT_TRUE(figures.count(id)) << "no figure " << id;
+    for (const auto& [id, series] : figures) {
+      for (const auto& s : series) {
+        EXPECT_EQ(s.drawn, s.points) << id << " / " << s.title;
+        EXPECT_GT(s.points, 0u) << id << " / " << s.title;
+        EXPECT_LE(s.points, most_points) << id << " / " << s.title;
+      }
+    }
+    auto samples = [&](const std::string& id, const std::string& title) -> std::size_t {
+      if (!figures.count(id)) return 0;
+      for (const auto& s : figures.at(id))
+        if (s.title == title) return s.samples;
+      return 0;
+    };
+    EXPECT_EQ(samples("top-view", "truth"), counts.truth);
+    EXPECT_EQ(samples("top-view", "setpoint"), counts.setpoint);
+    EXPECT_EQ(samples("top-view", "estimate"), counts.estimate);
+    EXPECT_EQ(samples("altitude", "truth"), counts.truth);
+    EXPECT_EQ(samples("tracking-error", "error against truth"), counts.tracking);
+    EXPECT_EQ(samples("attitude-roll", "estimate"), counts.attitude);
+    EXPECT_EQ(samples("motors", "motor 1"), counts.actuators);
+    EXPECT_EQ(samples("loop-latency", "p50"), counts.latency_p50);
+    EXPECT_EQ(samples("loop-latency", "p99"), counts.latency_p99);
+    EXPECT_EQ(samples("loop-latency", "max"), counts.latency_max);
+    EXPECT_EQ(text->find("the loop latency"), std::string::npos) << "the demo's log has it";
+  }
 
   // Chromium draws it, and what it draws is not a blank page.
   const std::string chromium = test::find_program("chromium");
@@ -248,6 +321,27 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   // A white 1200x3200 page compresses to a few KiB; the report's plots and tables to far more.
   EXPECT_GT(shot_bytes, 10 * blank_bytes) << shot << ": " << shot_bytes << " bytes, a blank page " << blank_bytes;
   std::cout << "screenshot: " << shot << " (" << shot_bytes << " bytes)\n";
+
+  // The page's script: no error; zoom one time plot and every time plot's x range follows.
+  const auto probe = probe_in_chromium(chromium, html, dir);
+  ASSERT_FALSE(probe.contains("failure")) << probe.dump();
+  EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
+  const auto data = page_data(page);
+  ASSERT_FALSE(data.is_null());
+  EXPECT_EQ(probe["ids"].size(), data["plots"].size()) << "a dygraph for every time plot";
+  EXPECT_GE(probe["ids"].size(), 10u);
+  EXPECT_GE(probe["canvases"].get<int>(), 2 * static_cast<int>(probe["ids"].size())) << "each plot drew its canvases";
+  const double zoom0 = probe["zoom"][0], zoom1 = probe["zoom"][1];
+  for (std::size_t i = 0; i < probe["after"].size(); ++i) {
+    EXPECT_NEAR(probe["after"][i][0].get<double>(), zoom0, 1e-6) << probe["ids"][i];
+    EXPECT_NEAR(probe["after"][i][1].get<double>(), zoom1, 1e-6) << probe["ids"][i];
+    EXPECT_GT(probe["before"][i][1].get<double>() - probe["before"][i][0].get<double>(), 10.0) << probe["ids"][i];
+  }
+  // The legend's series names toggle their series.
+  EXPECT_NE(probe["legend_item"], nullptr);
+  EXPECT_EQ(probe["visible_after_click"], false);
+  std::cout << "the page's script drew " << probe["ids"].size() << " time plots " << probe["drawn_ms"].get<double>()
+            << " ms after navigation started (" << page.size() / 1024 << " KiB page)\n";
 }
 
 TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults) {
@@ -436,6 +530,23 @@ TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
   EXPECT_EQ(s["type"], "summary");
   EXPECT_EQ(s["path"], dir + "/again.html");
   EXPECT_GT(s["lacks"].size(), 3u);
+  EXPECT_EQ(s["interactive"], true);
+  EXPECT_TRUE(s["static_because"].is_null());
+
+  // Without dygraphs' files: the static page, and the file that is missing named.
+  const std::string nowhere = dir + "/no-dygraphs";
+  auto fallback = test::run_hitl({"report", dir + "/plain.tlog", "--dygraphs", nowhere, "-o", dir + "/fallback.html"});
+  ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
+  EXPECT_NE(fallback.err.find("hitl report: " + nowhere + "/dygraph.min.js is missing (Debian/Ubuntu: apt-get install libjs-dygraphs)"),
+            std::string::npos)
+      << fallback.err;
+  EXPECT_NE(fallback.err.find("wrote the static page"), std::string::npos) << fallback.err;
+  EXPECT_EQ(read_file(dir + "/fallback.html").find("<script"), std::string::npos);
+  auto fallback_json = test::run_hitl({"--json", "report", dir + "/plain.tlog", "--dygraphs", nowhere, "-o", dir + "/fallback.html"});
+  ASSERT_EQ(fallback_json.exit_code, 0) << fallback_json.err;
+  const auto f = test::last_json_line(fallback_json.out);
+  EXPECT_EQ(f["interactive"], false);
+  EXPECT_NE(f["static_because"].get<std::string>().find(nowhere + "/dygraph.min.js is missing"), std::string::npos) << f.dump();
 }
 
 TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed) {
