@@ -17,6 +17,7 @@
 #include "engine/mavlink/statustext.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/mavlink/tlog_timeline.h"
+#include "engine/report/fault_windows.h"
 #include "engine/telemetry/px4_mode.h"
 
 namespace hitl::report {
@@ -174,6 +175,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   Arrivals actuators{"HIL_ACTUATOR_CONTROLS", std::nullopt, {}, {}};
   Track vehicle_setpoint;
   std::map<uint8_t, VehicleState> vehicles;
+  std::optional<uint8_t> mode_vehicle;  // whose modes are drawn as bands: the first vehicle heard
   uint64_t events_dropped = 0;
   auto event = [&](double t_s, Severity severity, std::string source, std::string text) {
     if (log.events.size() >= limits.max_events) {
@@ -305,6 +307,11 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           const auto mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
           if (v.armed != armed) event(t_s, Severity::Info, source_name(f, sim_id), armed ? "armed" : "disarmed");
           if (v.mode != mode) event(t_s, Severity::Info, source_name(f, sim_id), "mode " + mode);
+          if (!mode_vehicle) mode_vehicle = f.sysid;
+          if (*mode_vehicle == f.sysid && v.mode != mode) {
+            if (!log.modes.empty()) log.modes.back().end_s = t_s;
+            log.modes.push_back({mode, t_s, t_s});
+          }
           v.armed = armed;
           v.mode = mode;
           break;
@@ -329,6 +336,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   log.parse_errors = parser.stats().crc_errors + parser.stats().unknown_ids;
   log.start_s = *first_t_s;
   log.duration_s = *last_t_s - *first_t_s;
+  if (!log.modes.empty()) log.modes.back().end_s = *last_t_s;
+  log.faults = fault_windows(log.events, log.simulated_time);
   log.wall_duration_s = std::max(0.0, static_cast<double>(*last_wall_us) - static_cast<double>(*first_wall_us)) * 1e-6;
   // One height datum, home (docs/sim.md): the truth and the setpoints flown on it, down by the
   // truth's height at rest; the vehicle's own frames are from home already.

@@ -55,6 +55,23 @@ struct LogEvent {
   std::string text;
 };
 
+/// A fault the simulator ran (fault_windows.h): from its start to its end, with its arguments.
+struct FaultWindow {
+  std::string name;                  ///< "imu-vibration"
+  std::string args;                  ///< "8,90" as the simulator said them ("" : none)
+  double start_s = 0;
+  std::optional<double> end_s;       ///< nullopt: still active when the log ended
+  std::optional<double> duration_s;  ///< as its start said it ("started (5 s)")
+  std::string label() const { return args.empty() ? name : name + ":" + args; }
+};
+
+/// The vehicle's flight mode (PX4's name, from its HEARTBEAT) from one change to the next.
+struct ModeSpan {
+  std::string mode;  ///< "Position", "Land", ...
+  double start_s = 0;
+  double end_s = 0;  ///< the next change, or the log's last record
+};
+
 struct TrackingSummary {
   uint64_t samples = 0;
   double rms_m = 0;
@@ -118,6 +135,8 @@ struct FlightLog {
   std::array<Series, 6> ekf_ratios;  ///< ESTIMATOR_STATUS, in kEkfRatioNames' order
   std::vector<PathTiming> paths;
   std::vector<LogEvent> events;
+  std::vector<FaultWindow> faults;        ///< the simulator's fault windows, in start order
+  std::vector<ModeSpan> modes;            ///< the first vehicle's flight modes
   std::optional<int64_t> late_ticks;      ///< the session's last "sim_late"
   std::optional<bool> lockstep;           ///< the session's "sim_lockst"
   LoopLatencySeries loop_latency;

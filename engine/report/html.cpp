@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "engine/report/fault_windows.h"
+
 namespace hitl::report {
 namespace {
 
@@ -79,6 +81,12 @@ std::string summary_sections(const FlightLog& log) {
                           fixed(log.px4->rms_m, 3) + " m" +
                           (log.px4->lag_s ? ", lag " + fixed(*log.px4->lag_s * 1e3, 0) + " ms (fitted)" : ""));
     for (const auto& note : log.px4->notes) row("PX4's ULog", note);
+  }
+  for (const auto& f : log.faults) {
+    const std::string args = named_fault_args(f.label());
+    row("fault", f.name + (args.empty() ? "" : " (" + args + ")") + ": from " + fixed(f.start_s, 2) + " s " +
+                     (f.end_s ? "to " + fixed(*f.end_s, 2) + " s (" + fixed(*f.end_s - f.start_s, 1) + " s)"
+                              : "to the end of the log" + (f.duration_s ? " (meant to last " + fixed(*f.duration_s, 1) + " s)" : std::string())));
   }
   row("events", std::to_string(log.events.size()));
   if (log.skipped_bytes > 0 || log.parse_errors > 0)

@@ -201,23 +201,17 @@ std::string screenshot(const std::string& chromium, const std::string& html, con
 }
 
 /// What the page's script did in headless Chromium: the page with a probe added (an error and
-/// console.error/warn catcher before every script, and after them a script that zooms the second
-/// time plot to 2 s and reads every time plot's x range, then clicks the first series' name in the
-/// first plot's legend), its DOM dumped; the probe's JSON, or {"failure": why}.
-nlohmann::json probe_in_chromium(const std::string& chromium, const std::string& html, const std::string& dir) {
+/// console.error/warn catcher before every script, and after them `probe_js`, which fills `out`
+/// with what it finds, r being window.hitlReport), its DOM dumped; `out` as JSON (with "errors"),
+/// or {"failure": why}.
+nlohmann::json probe_in_chromium(const std::string& chromium, const std::string& html, const std::string& dir,
+                                 const std::string& probe_js) {
   std::string page = read_file(html);
   const std::string catcher = R"(<script>window.hitlErrors=[];window.addEventListener('error',function(e){hitlErrors.push('error: '+e.message)});
 ['error','warn'].forEach(function(k){var f=console[k];console[k]=function(){hitlErrors.push(k+': '+Array.prototype.join.call(arguments,' '));f.apply(console,arguments)}});</script>)";
-  const std::string probe = R"(<script>(function(){var out={errors:hitlErrors,ids:[],before:[],after:[]};
-try{var r=window.hitlReport;out.ids=r.ids;out.drawn_ms=r.drawn_ms;
-out.before=r.graphs.map(function(g){return g.xAxisRange()});
-var g=r.graphs[1],x=g.xAxisRange(),a=x[0]+0.4*(x[1]-x[0]);out.zoom=[a,a+2];g.updateOptions({dateWindow:out.zoom});
-out.after=r.graphs.map(function(g){return g.xAxisRange()});
-var item=document.querySelector('#plot-'+r.ids[0]+' .values [data-i="0"]');out.legend_item=item?item.textContent:null;
-if(item)item.click();out.visible_after_click=r.graphs[0].visibility()[0];
-out.canvases=document.querySelectorAll('figure.time-plot canvas').length;
-}catch(e){out.errors.push('probe: '+e)}
-var pre=document.createElement('pre');pre.id='hitl-probe';pre.textContent=JSON.stringify(out);document.body.appendChild(pre)})();</script>)";
+  const std::string probe = "<script>(function(){var out={errors:hitlErrors};try{var r=window.hitlReport;" + probe_js +
+                            "}catch(e){out.errors.push('probe: '+e)}var pre=document.createElement('pre');pre.id='hitl-probe';"
+                            "pre.textContent=JSON.stringify(out);document.body.appendChild(pre)})();</script>";
   const auto head = page.find("</head>"), body = page.rfind("</body>");
   if (head == std::string::npos || body == std::string::npos) return {{"failure", "no </head> or </body> in the page"}};
   page.insert(body, probe);
@@ -234,6 +228,26 @@ var pre=document.createElement('pre');pre.id='hitl-probe';pre.textContent=JSON.s
   const auto start = at + open.size();
   return nlohmann::json::parse(unescaped(r.out.substr(start, r.out.find("</pre>", start) - start)));
 }
+
+/// Zooms the second time plot to 2 s and reads every time plot's x range before and after, then
+/// clicks the first series' name in the first plot's legend.
+constexpr const char* kZoomProbe = R"(out.ids=r.ids;out.drawn_ms=r.drawn_ms;
+out.before=r.graphs.map(function(g){return g.xAxisRange()});
+var g=r.graphs[1],x=g.xAxisRange(),a=x[0]+0.4*(x[1]-x[0]);out.zoom=[a,a+2];g.updateOptions({dateWindow:out.zoom});
+out.after=r.graphs.map(function(g){return g.xAxisRange()});
+var item=document.querySelector('#plot-'+r.ids[0]+' .values [data-i="0"]');out.legend_item=item?item.textContent:null;
+if(item)item.click();out.visible_after_click=r.graphs[0].visibility()[0];
+out.canvases=document.querySelectorAll('figure.time-plot canvas').length;)";
+
+/// For each time plot and each fault window, the share of a column of the plot's pixels that are
+/// red-tinted (the window's band) at the window's middle ("inside") and at 5 s ("outside").
+constexpr const char* kShadeProbe = R"(var faults=JSON.parse(document.getElementById('hitl-data').textContent).faults;
+function reddish(g,t){var a=g.getArea(),c=g.hidden_,k=c.width/g.width_,ctx=c.getContext('2d'),n=0,all=0;
+var x=Math.round(g.toDomXCoord(t)*k);for(var y=a.y+2;y<a.y+a.h-2;y+=3){var p=ctx.getImageData(x,Math.round(y*k),1,1).data;
+all++;if(p[0]>p[1]+12&&p[0]>p[2]+12)n++;}return n/all;}
+out.ids=r.ids;out.faults=faults;
+out.inside=r.graphs.map(function(g){return faults.map(function(f){return reddish(g,(f.t0+f.t1)/2)})});
+out.outside=r.graphs.map(function(g){return reddish(g,5)});)";
 
 TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   const std::string dir = test::temp_dir();
@@ -323,7 +337,7 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   std::cout << "screenshot: " << shot << " (" << shot_bytes << " bytes)\n";
 
   // The page's script: no error; zoom one time plot and every time plot's x range follows.
-  const auto probe = probe_in_chromium(chromium, html, dir);
+  const auto probe = probe_in_chromium(chromium, html, dir, kZoomProbe);
   ASSERT_FALSE(probe.contains("failure")) << probe.dump();
   EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
   const auto data = page_data(page);
@@ -353,8 +367,8 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
   ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
   test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
                      std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t",
-                     std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--fault", "gps-loss@15+3", "--report",
-                     dir + "/flight.html"});
+                     std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--fault", "gps-loss@15+3", "--fault",
+                     "imu-vibration:8,90@20+2", "--report", dir + "/flight.html"});
   EXPECT_EQ(sim.wait(150s), 0) << sim.err();
   board.signal(SIGINT);
   board.wait(20s);
@@ -369,6 +383,29 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
             std::string::npos);
   EXPECT_NE(page.find("<td>pilot</td><td>info</td><td>trajectory: HOLD (trajectory flown)</td>"), std::string::npos);
   EXPECT_EQ(page.find("What this log lacks</h2>\n<ul class=\"lacks\" id=\"lacks\">\n<li>ground truth"), std::string::npos);
+  // Each fault in the summary with its arguments named, and its window in the page's data.
+  EXPECT_NE(page.find("<tr><th>fault</th><td>gps-loss: from 15.00 s to 18.00 s (3.0 s)</td></tr>"), std::string::npos);
+  EXPECT_NE(page.find("<tr><th>fault</th><td>imu-vibration (amp_m_s2 8, freq_hz 90): from 20.00 s to 22.00 s (2.0 s)</td></tr>"),
+            std::string::npos);
+  const auto data = page_data(page);
+  ASSERT_FALSE(data.is_null());
+  EXPECT_EQ(data["faults"].dump(),
+            R"([{"label":"gps-loss","t0":15.0,"t1":18.0},{"label":"imu-vibration:8,90","t0":20.0,"t1":22.0}])");
+  bool position = false;
+  for (const auto& m : data["modes"]) position = position || m["mode"] == "Position";
+  EXPECT_TRUE(position) << data["modes"].dump();
+
+  // Both windows shaded behind every time plot, and nothing red at 5 s, before them.
+  const std::string chromium = test::find_program("chromium");
+  if (chromium.empty()) return;  // the demo's test says why
+  const auto probe = probe_in_chromium(chromium, dir + "/flight.html", dir, kShadeProbe);
+  ASSERT_FALSE(probe.contains("failure")) << probe.dump();
+  EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
+  ASSERT_EQ(probe["ids"].size(), data["plots"].size());
+  for (std::size_t i = 0; i < probe["ids"].size(); ++i) {
+    for (std::size_t k = 0; k < 2; ++k) EXPECT_GE(probe["inside"][i][k].get<double>(), 0.5) << probe["ids"][i] << " fault " << k;
+    EXPECT_LE(probe["outside"][i].get<double>(), 0.25) << probe["ids"][i];
+  }
 }
 
 /// The altitude plot's series `title` as drawn: time -> height.
