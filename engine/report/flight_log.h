@@ -37,6 +37,24 @@ struct AttitudeTrack {
   std::size_t size() const { return t_s.size(); }
 };
 
+struct VelocityTrack {
+  std::vector<double> t_s, north_m_s, east_m_s, down_m_s;
+  std::size_t size() const { return t_s.size(); }
+};
+
+/// Body rates (FRD: roll, pitch, yaw) in degrees per second.
+struct RateTrack {
+  std::vector<double> t_s, roll_deg_s, pitch_deg_s, yaw_deg_s;
+  std::size_t size() const { return t_s.size(); }
+};
+
+/// The pilot's sticks, each -1..1: MANUAL_CONTROL's x (pitch), y (roll), z (thrust), r (yaw) / 1000,
+/// or RC_CHANNELS_OVERRIDE's channels 1 to 4 (roll, pitch, throttle, yaw) as (us - 1500) / 500.
+struct Sticks {
+  Series roll, pitch, throttle, yaw;
+  std::size_t size() const { return roll.size(); }
+};
+
 /// One data path's arrivals in 1 s windows of the log's time: rate per second of that time and the
 /// standard deviation of the wall-clock inter-arrival time.
 struct PathTiming {
@@ -129,6 +147,14 @@ struct FlightLog {
   std::optional<double> truth_rest_down_m;
   AttitudeTrack truth_attitude;
   AttitudeTrack estimate_attitude;  ///< ATTITUDE
+  VelocityTrack setpoint_velocity;  ///< POSITION_TARGET_LOCAL_NED vx, vy, vz of the same sender as `setpoint`, where its type_mask gives them
+  VelocityTrack truth_velocity;     ///< the truth ODOMETRY's body velocity turned to NED by its quaternion
+  VelocityTrack estimate_velocity;  ///< LOCAL_POSITION_NED vx, vy, vz
+  RateTrack rate_setpoint;          ///< the vehicle's ATTITUDE_TARGET body rates (where its type_mask gives them)
+  RateTrack truth_rates;            ///< the truth ODOMETRY's rollspeed, pitchspeed, yawspeed
+  RateTrack estimate_rates;         ///< ATTITUDE rollspeed, pitchspeed, yawspeed
+  Sticks manual_control;            ///< MANUAL_CONTROL (any sender)
+  Sticks rc_override;               ///< RC_CHANNELS_OVERRIDE (any sender)
   Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err from the pilot: what the tracking RMS/max are of
   std::optional<TrackingSummary> tracking;
   std::array<Series, 4> motors;  ///< HIL_ACTUATOR_CONTROLS controls[0..3]

@@ -26,7 +26,8 @@ constexpr const char* kStyle = R"(body{font-family:sans-serif;margin:24px auto;p
 h1{font-size:22px}h2{font-size:17px;margin-top:28px}table{border-collapse:collapse;font-size:13px}
 td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}th{background:#f3f3f3}
 figure{margin:18px 0;border:1px solid #ddd;padding:6px}figure svg{width:100%;height:auto}
-figcaption{font-size:12px;color:#555}.lacks li{color:#8a4b00}.sev-warning{color:#b35900}.sev-error{color:#c00}
+figcaption{font-size:12px;color:#555}figcaption .from{color:#777;font-style:italic}
+figure.lacking{color:#8a4b00;font-size:13px;padding:2px 10px}.lacks li{color:#8a4b00}.sev-warning{color:#b35900}.sev-error{color:#c00}
 .legend span{display:inline-block;margin-right:14px;font-size:12px}.swatch{display:inline-block;width:14px;border-top:2px dotted;margin-right:4px;vertical-align:middle}
 )";
 
@@ -110,8 +111,17 @@ std::string figure_html(const Plot& plot, const std::string& inner, const std::s
   for (const auto& s : plot.series) series.push_back({{"title", s.title}, {"points", s.x.size()}, {"samples", s.samples}});
   std::string h = "<figure id=\"plot-" + plot.id + "\"" + (css_class.empty() ? "" : " class=\"" + css_class + "\"") +
                   " data-series=\"" + html_escaped(series.dump()) + "\">\n" + inner + "\n";
-  if (!plot.note.empty()) h += "<figcaption>" + html_escaped(plot.note) + "</figcaption>\n";
+  if (!plot.note.empty() || !plot.sources.empty()) {
+    h += "<figcaption>" + html_escaped(plot.note);
+    if (!plot.sources.empty()) h += std::string(plot.note.empty() ? "" : "<br>") + "<span class=\"from\">from " + html_escaped(plot.sources) + "</span>";
+    h += "</figcaption>\n";
+  }
   return h + "</figure>\n";
+}
+
+std::string lacking_figure(const Plot& plot) {
+  return "<figure id=\"lacks-" + plot.id + "\" class=\"lacking\"><p><b>" + html_escaped(plot.title) + "</b>: " +
+         html_escaped(plot.lacks) + "</p></figure>\n";
 }
 
 std::string svg_figure(const Plot& plot, const std::string& svg) { return figure_html(plot, inline_svg(svg)); }
@@ -133,7 +143,8 @@ std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, co
   h << "<h2>Plots</h2>\n<p class=\"legend\">Events on the time axes: <span><i class=\"swatch\" style=\"border-color:#2ca02c\"></i>info</span>"
        "<span><i class=\"swatch\" style=\"border-color:#1f77b4\"></i>notice</span><span><i class=\"swatch\" "
        "style=\"border-color:#ff7f0e\"></i>warning</span><span><i class=\"swatch\" style=\"border-color:#d62728\"></i>error</span></p>\n";
-  for (std::size_t i = 0; i < plots.size() && i < svgs.size(); ++i) h << svg_figure(plots[i], svgs[i]);
+  for (std::size_t i = 0; i < plots.size() && i < svgs.size(); ++i)
+    h << (plots[i].series.empty() ? lacking_figure(plots[i]) : svg_figure(plots[i], svgs[i]));
   h << events_section(log) << "</body></html>\n";
   return h.str();
 }

@@ -12,7 +12,7 @@
 
 namespace hitl::report {
 
-/// `svgs[i]` is plots[i] drawn.
+/// `svgs[i]` is plots[i] drawn (a plot without series: lacking_figure in its place).
 std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, const std::vector<std::string>& svgs);
 
 /// The page up to its <h1> (`extra_head` goes at the end of <head>).
@@ -23,6 +23,9 @@ std::string summary_sections(const FlightLog& log);
 std::string events_section(const FlightLog& log);
 /// <figure id="plot-ID" class="CSS_CLASS" data-series="..."> `inner` <figcaption>note</figcaption></figure>.
 std::string figure_html(const Plot& plot, const std::string& inner, const std::string& css_class = "");
+/// A plot the log has no data for, in its place: <figure id="lacks-ID" class="lacking"> its title
+/// and what the log lacks.
+std::string lacking_figure(const Plot& plot);
 /// The figure with gnuplot's SVG inline.
 std::string svg_figure(const Plot& plot, const std::string& svg);
 

@@ -48,7 +48,7 @@ std::string data_json(const FlightLog& log, const std::vector<Plot>& plots) {
   nlohmann::json plot_list = nlohmann::json::array();
   std::string time_label;
   for (const auto& p : plots) {
-    if (!p.time_axis) continue;
+    if (!p.time_axis || p.series.empty()) continue;
     if (time_label.empty()) time_label = p.x_label;
     nlohmann::json series = nlohmann::json::array();
     for (const auto& s : p.series) series.push_back(series_json(s));
@@ -90,7 +90,7 @@ constexpr const char* kInteractiveStyle = R"(figure.time-plot .graph{width:100%;
 std::size_t interactive_points_per_series(const std::vector<Plot>& plots) {
   std::size_t series = 0;
   for (const auto& p : plots)
-    if (p.time_axis) series += p.series.size();
+    if (p.time_axis) series += p.series.size();  // a lacking plot has none
   return series == 0 ? kInteractiveMaxPoints : std::clamp<std::size_t>(kInteractivePointBudget / series, 100, kInteractiveMaxPoints);
 }
 
@@ -118,7 +118,9 @@ std::string interactive_html(const FlightLog& log, const std::vector<Plot>& plot
        "each plot; click a series' name there to hide or show it. Dotted lines: events (green info, blue notice, orange "
        "warning, red error); red bands: fault windows; tinted bands: the vehicle's flight modes.</p>\n";
   for (std::size_t i = 0; i < plots.size(); ++i) {
-    if (plots[i].time_axis) {
+    if (plots[i].series.empty()) {
+      h << lacking_figure(plots[i]);
+    } else if (plots[i].time_axis) {
       h << figure_html(plots[i], "<div class=\"values\"></div><div class=\"graph\"></div>", "time-plot");
     } else if (i < svgs.size() && !svgs[i].empty()) {
       h << svg_figure(plots[i], svgs[i]);

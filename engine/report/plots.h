@@ -33,6 +33,8 @@ struct Plot {
   bool equal_axes = false;   ///< the top view: one metre is one metre both ways
   std::string note;          ///< a line under the plot (the tracking RMS/max, how series were thinned)
   double x_min = 0, x_max = 0;  ///< the time axis' range
+  std::string sources;       ///< the messages its series come from, in words ("ATTITUDE (estimate), ...")
+  std::string lacks;         ///< no series (kept with PlotOptions::keep_lacking): what the log lacks for it
 };
 
 struct PlotOptions {
@@ -40,10 +42,12 @@ struct PlotOptions {
   /// A point within this fraction of the plot's extent (both axes) of the last one drawn is left out:
   /// no drawing can tell them apart (1e-4 of a ~850 px wide plot is 0.085 px; SVG keeps 0.01 px).
   double indistinct_fraction = 1e-4;
+  /// Keep a plot the log has no data for, without series and with `lacks` said, in its place.
+  bool keep_lacking = false;
 };
 
 /// Every plot the log has data for, in the report's order; a plot with no data is left out (the
-/// log's `missing` says why). Series are thinned (`thinned`), then points no drawing can tell
+/// log's `missing` says why), or kept with its `lacks` said (PlotOptions::keep_lacking). Series are thinned (`thinned`), then points no drawing can tell
 /// apart are dropped.
 std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options = {});
 

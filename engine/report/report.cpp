@@ -1,6 +1,8 @@
 #include "engine/report/report.h"
 
+#include <algorithm>
 #include <cstring>
+#include <map>
 #include <fstream>
 
 #include "base/common/clock.h"
@@ -35,39 +37,40 @@ Expected<ReportResult> write_report(const std::string& tlog_path, const std::str
     if (loaded) library = std::move(*loaded);
     else static_because = loaded.error().message;
   }
-  // gnuplot draws the static page's plots, and the interactive page's that are not against time.
-  const auto svg_plots = plots_of(*log);
+  // gnuplot draws the static page's plots, and the interactive page's that are not against time;
+  // a plot the log has no data for says so in its place.
+  const auto svg_plots = plots_of(*log, {2500, 1e-4, true});
   std::vector<Plot> to_draw;
   for (const auto& p : svg_plots)
-    if (!library || !p.time_axis) to_draw.push_back(p);
+    if (!p.series.empty() && (!library || !p.time_axis)) to_draw.push_back(p);
   std::vector<std::string> failed;
   auto drawn_svgs = render_svgs(to_draw, event_markers(*log), {}, &failed);
   if (!drawn_svgs) return drawn_svgs.error();
-  for (const auto& f : failed) log->skipped.push_back("the plot " + f);
+  std::map<std::string, std::string> svg_of;  // plot id -> its SVG ("" : gnuplot could not draw it)
+  for (std::size_t i = 0; i < to_draw.size(); ++i) svg_of[to_draw[i].id] = (*drawn_svgs)[i];
   // What a damaged log had that the page does not show: set aside while reading, or not drawn.
+  for (const auto& f : failed) log->skipped.push_back("the plot " + f);
   std::vector<Plot> plots;
   std::vector<std::string> svgs;
-  if (library) {
-    std::size_t next_svg = 0;
-    const std::size_t points = interactive_points_per_series(svg_plots);
-    for (auto& p : plots_of(*log, {points, 0.0})) {
-      if (p.time_axis) {
-        round_times_to_ms(p);
-        plots.push_back(std::move(p));
-        svgs.emplace_back();
-        continue;
-      }
-      const std::string& svg = (*drawn_svgs)[next_svg];
-      if (!svg.empty()) plots.push_back(to_draw[next_svg]), svgs.push_back(svg);
-      ++next_svg;
+  auto keep = [&](Plot p) {
+    if (p.series.empty()) {
+      plots.push_back(std::move(p)), svgs.emplace_back();
+    } else if (library && p.time_axis) {
+      round_times_to_ms(p);
+      plots.push_back(std::move(p)), svgs.emplace_back();
+    } else if (!svg_of[p.id].empty()) {
+      svgs.push_back(svg_of[p.id]), plots.push_back(std::move(p));
     }
+  };
+  if (library) {
+    const std::size_t points = interactive_points_per_series(svg_plots);
+    for (auto& p : plots_of(*log, {points, 0.0, true})) keep(p.time_axis ? std::move(p) : *std::find_if(svg_plots.begin(), svg_plots.end(), [&](const Plot& q) { return q.id == p.id; }));
     html = interactive_html(*log, plots, svgs, *library);
   } else {
-    for (std::size_t i = 0; i < to_draw.size(); ++i)
-      if (!(*drawn_svgs)[i].empty()) plots.push_back(to_draw[i]), svgs.push_back((*drawn_svgs)[i]);
+    for (const auto& p : svg_plots) keep(p);
     html = report_html(*log, plots, svgs);
   }
-  figures = plots.size();
+  for (const auto& p : plots) figures += p.series.empty() ? 0 : 1;
   std::ofstream out(html_path, std::ios::binary | std::ios::trunc);
   if (!out) return Error::input("cannot write the report '" + html_path + "': " + std::strerror(errno));
   out << html;

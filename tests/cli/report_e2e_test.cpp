@@ -145,7 +145,7 @@ std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& ht
 
 /// Counted straight from the recording with the codec, not with the report's reader.
 struct RecordingCounts {
-  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0;
+  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0, manual_control = 0;
   std::size_t latency_p50 = 0, latency_p99 = 0, latency_max = 0;  ///< the session's status once something was answered (not -1)
 };
 
@@ -166,6 +166,7 @@ RecordingCounts count_recording(const std::string& path) {
       if (!sim && f.is<msg::LocalPositionNed>()) ++c.estimate;
       if (!sim && f.is<msg::Attitude>()) ++c.attitude;
       if (!sim && f.is<msg::HilActuatorControls>()) ++c.actuators;
+      if (f.is<msg::ManualControl>()) ++c.manual_control;
       if (sim && f.is<msg::NamedValueInt>() && f.as<msg::NamedValueInt>().value >= 0) {
         const auto name = mavlink::text_of(f.as<msg::NamedValueInt>().name);
         c.latency_p50 += name == kStatusLoopLatencyP50Name ? 1 : 0;
@@ -288,9 +289,14 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   for (const auto& [which, text, most_points] : {std::tuple{"interactive", &page, 10100u}, std::tuple{"static", &static_page, 2600u}}) {
     SCOPED_TRACE(which);
     const auto figures = figures_of(*text);
-    for (const char* id : {"top-view", "altitude", "tracking-error", "attitude-roll", "attitude-pitch", "attitude-yaw", "motors",
-                           "rates", "jitter", "loop-latency", "ekf"})
+    for (const char* id : {"top-view", "altitude", "tracking-error", "velocity-north", "velocity-east", "velocity-up", "attitude-roll",
+                           "attitude-pitch", "attitude-yaw", "rate-roll", "rate-pitch", "rate-yaw", "motors", "sticks", "rates",
+                           "jitter", "loop-latency", "ekf"})
       EXPECT_TRUE(figures.count(id)) << "no figure " << id;
+    EXPECT_EQ(text->find("<figure id=\"lacks-"), std::string::npos) << "the demo's log has every plot's data";
+    // Each plot says which messages it comes from; the emulated board streams no ATTITUDE_TARGET.
+    EXPECT_NE(text->find("<span class=\"from\">from ATTITUDE_TARGET body rates (setpoint)"), std::string::npos);
+    EXPECT_NE(text->find("no rate setpoint: this log has no ATTITUDE_TARGET"), std::string::npos);
     for (const auto& [id, series] : figures) {
       for (const auto& s : series) {
         EXPECT_EQ(s.drawn, s.points) << id << " / " << s.title;
@@ -311,6 +317,9 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
     EXPECT_EQ(samples("tracking-error", "error against truth"), counts.tracking);
     EXPECT_EQ(samples("attitude-roll", "estimate"), counts.attitude);
     EXPECT_EQ(samples("motors", "motor 1"), counts.actuators);
+    EXPECT_EQ(samples("velocity-up", "estimate"), counts.estimate);
+    EXPECT_EQ(samples("rate-roll", "truth"), counts.truth);
+    EXPECT_EQ(samples("sticks", "throttle"), counts.manual_control);
     EXPECT_EQ(samples("loop-latency", "p50"), counts.latency_p50);
     EXPECT_EQ(samples("loop-latency", "p99"), counts.latency_p99);
     EXPECT_EQ(samples("loop-latency", "max"), counts.latency_max);
@@ -551,6 +560,12 @@ TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
   EXPECT_TRUE(figures.count("attitude-roll")) << "the board's ATTITUDE is drawn";
   EXPECT_TRUE(figures.count("ekf")) << "the board's ESTIMATOR_STATUS is drawn";
   EXPECT_FALSE(figures.count("top-view"));
+  // A plot the log has no data for says so in its place, naming the messages it would come from.
+  EXPECT_NE(page.find("<figure id=\"lacks-top-view\" class=\"lacking\"><p><b>Top view: setpoint, truth and estimate</b>: this log "
+                      "has no POSITION_TARGET_LOCAL_NED (setpoint)"),
+            std::string::npos);
+  EXPECT_NE(page.find("<figure id=\"lacks-sticks\" class=\"lacking\"><p><b>Sticks</b>: this log has no MANUAL_CONTROL or RC_CHANNELS_OVERRIDE"),
+            std::string::npos);
   EXPECT_NE(page.find("the vehicle's position estimate (LOCAL_POSITION_NED)"), std::string::npos);
   EXPECT_FALSE(figures.count("tracking-error"));
   for (const auto& [id, series] : figures)
