@@ -133,7 +133,41 @@ const char* const kPageScript = R"hitljs((function () {
     graphs.push(g);
     ids.push(p.id);
   });
-  if (graphs.length > 1) Dygraph.synchronize(graphs, {zoom: true, selection: true, range: false});
+  // The row of g nearest to time x (the plots' rows are at different times: the synchronizer's own
+  // selection link finds only a row at exactly x).
+  function nearestRow(g, x) {
+    var lo = 0, hi = g.numRows() - 1;
+    if (hi < 0) return null;
+    while (lo < hi) {
+      var mid = (lo + hi) >> 1;
+      if (g.getValue(mid, 0) < x) lo = mid + 1; else hi = mid;
+    }
+    if (lo > 0 && Math.abs(g.getValue(lo - 1, 0) - x) < Math.abs(g.getValue(lo, 0) - x)) --lo;
+    return lo;
+  }
+  if (graphs.length > 1) {
+    Dygraph.synchronize(graphs, {zoom: true, selection: false, range: false});
+    var linking = false;
+    graphs.forEach(function (g) {
+      g.updateOptions({
+        highlightCallback: function (e, x) {
+          if (linking) return;
+          linking = true;
+          graphs.forEach(function (other) {
+            var row = other === g ? null : nearestRow(other, x);
+            if (row !== null) other.setSelection(row);
+          });
+          linking = false;
+        },
+        unhighlightCallback: function () {
+          if (linking) return;
+          linking = true;
+          graphs.forEach(function (other) { if (other !== g) other.clearSelection(); });
+          linking = false;
+        }
+      }, true);
+    });
+  }
   window.hitlReport = {graphs: graphs, ids: ids, drawn_ms: performance.now()};
 })();
 )hitljs";

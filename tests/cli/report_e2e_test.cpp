@@ -230,9 +230,16 @@ nlohmann::json probe_in_chromium(const std::string& chromium, const std::string&
   return nlohmann::json::parse(unescaped(r.out.substr(start, r.out.find("</pre>", start) - start)));
 }
 
-/// Zooms the second time plot to 2 s and reads every time plot's x range before and after, then
+/// Moves the mouse over the middle of the third time plot and reads the time selected in each;
+/// zooms the second time plot to 2 s and reads every time plot's x range before and after; then
 /// clicks the first series' name in the first plot's legend.
 constexpr const char* kZoomProbe = R"(out.ids=r.ids;out.drawn_ms=r.drawn_ms;
+var h=r.graphs[2],ha=h.getArea(),hc=h.mouseEventElement_,hr=hc.getBoundingClientRect();
+hc.dispatchEvent(new MouseEvent('mousemove',{clientX:hr.left+ha.x+ha.w/2,clientY:hr.top+ha.y+ha.h/2,bubbles:true}));
+out.hover_t=h.getSelection()<0?null:h.getValue(h.getSelection(),0);
+out.selected=r.graphs.map(function(o){return o.getSelection()<0?null:o.getValue(o.getSelection(),0)});
+out.first_legend=document.querySelector('#plot-'+r.ids[0]+' .values').textContent;
+h.clearSelection();
 out.before=r.graphs.map(function(g){return g.xAxisRange()});
 var g=r.graphs[1],x=g.xAxisRange(),a=x[0]+0.4*(x[1]-x[0]);out.zoom=[a,a+2];g.updateOptions({dateWindow:out.zoom});
 out.after=r.graphs.map(function(g){return g.xAxisRange()});
@@ -360,6 +367,13 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
     EXPECT_NEAR(probe["after"][i][1].get<double>(), zoom1, 1e-6) << probe["ids"][i];
     EXPECT_GT(probe["before"][i][1].get<double>() - probe["before"][i][0].get<double>(), 10.0) << probe["ids"][i];
   }
+  // Hovering one plot selects the nearest time in every other and shows the values there.
+  ASSERT_FALSE(probe["hover_t"].is_null()) << probe.dump().substr(0, 400);
+  for (std::size_t i = 0; i < probe["selected"].size(); ++i) {
+    ASSERT_FALSE(probe["selected"][i].is_null()) << probe["ids"][i];
+    EXPECT_NEAR(probe["selected"][i].get<double>(), probe["hover_t"].get<double>(), 0.6) << probe["ids"][i];  // the 1 s windows' middles
+  }
+  EXPECT_EQ(probe["first_legend"].get<std::string>().rfind("t = ", 0), 0u) << probe["first_legend"];
   // The legend's series names toggle their series.
   EXPECT_NE(probe["legend_item"], nullptr);
   EXPECT_EQ(probe["visible_after_click"], false);
