@@ -54,13 +54,12 @@ std::string data_json(const FlightLog& log, const std::vector<Plot>& plots) {
     for (const auto& s : p.series) series.push_back(series_json(s));
     plot_list.push_back({{"id", p.id}, {"title", p.title}, {"y_label", p.y_label}, {"series", std::move(series)}});
   }
+  const TimeMarks marks = time_marks(log);
   nlohmann::json events = nlohmann::json::array();
-  for (const auto& m : event_markers(log)) events.push_back({{"t", compact(m.t_s)}, {"severity", to_string(m.severity)}});
+  for (const auto& m : marks.events) events.push_back({{"t", compact(m.t_s)}, {"severity", to_string(m.severity)}});
   nlohmann::json faults = nlohmann::json::array(), modes = nlohmann::json::array();
-  const double end_s = log.start_s + log.duration_s;
-  for (const auto& f : log.faults)
-    faults.push_back({{"label", f.label()}, {"t0", compact(f.start_s)}, {"t1", compact(f.end_s.value_or(end_s))}});
-  for (const auto& m : log.modes) modes.push_back({{"mode", m.mode}, {"t0", compact(m.start_s)}, {"t1", compact(m.end_s)}});
+  for (const auto& f : marks.faults) faults.push_back({{"label", f.label}, {"t0", compact(f.start_s)}, {"t1", compact(f.end_s)}});
+  for (const auto& m : marks.modes) modes.push_back({{"mode", m.label}, {"t0", compact(m.start_s)}, {"t1", compact(m.end_s)}});
   nlohmann::json j = {{"time_label", time_label},
                       {"x_range", {compact(log.start_s), compact(log.start_s + log.duration_s)}},
                       {"plots", std::move(plot_list)},

@@ -81,6 +81,15 @@ std::vector<EventMarker> event_markers(const FlightLog& log, std::size_t max_mar
   return out;
 }
 
+TimeMarks time_marks(const FlightLog& log) {
+  TimeMarks marks;
+  marks.events = event_markers(log);
+  const double end_s = log.start_s + log.duration_s;
+  for (const auto& f : log.faults) marks.faults.push_back({f.start_s, f.end_s.value_or(end_s), f.label()});
+  for (const auto& m : log.modes) marks.modes.push_back({m.start_s, m.end_s, m.mode});
+  return marks;
+}
+
 std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
   const std::size_t n = options.max_points;
   const std::string time_label = log.simulated_time ? "simulated time (s)" : "time since the first record (s)";

@@ -24,6 +24,19 @@ struct EventMarker {
   Severity severity = Severity::Info;
 };
 
+/// A stretch of the time axis shaded behind every time plot: a fault window or a flight mode.
+struct TimeBand {
+  double start_s = 0, end_s = 0;
+  std::string label;  ///< "imu-vibration:8,90", "Position"
+};
+
+/// What is marked on every time axis: the events, the fault windows and the flight modes.
+struct TimeMarks {
+  std::vector<EventMarker> events;
+  std::vector<TimeBand> faults;  ///< one still active when the log ended runs to its end
+  std::vector<TimeBand> modes;
+};
+
 struct Plot {
   std::string id;       ///< "top-view", "altitude", ... (the HTML's figure id)
   std::string title;
@@ -53,6 +66,9 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options = {}
 
 /// The events drawn as markers on every time axis (at most this many; the table lists them all).
 std::vector<EventMarker> event_markers(const FlightLog& log, std::size_t max_markers = 200);
+
+/// The events (event_markers), the fault windows and the flight modes, for every time axis.
+TimeMarks time_marks(const FlightLog& log);
 
 /// Every `stride`-th point from the first, the last always kept; consecutive equal points once.
 PlotSeries thinned(std::string title, SeriesStyle style, const std::vector<double>& x, const std::vector<double>& y,

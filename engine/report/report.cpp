@@ -44,7 +44,7 @@ Expected<ReportResult> write_report(const std::string& tlog_path, const std::str
   for (const auto& p : svg_plots)
     if (!p.series.empty() && (!library || !p.time_axis)) to_draw.push_back(p);
   std::vector<std::string> failed;
-  auto drawn_svgs = render_svgs(to_draw, event_markers(*log), {}, &failed);
+  auto drawn_svgs = render_svgs(to_draw, time_marks(*log), {}, &failed);
   if (!drawn_svgs) return drawn_svgs.error();
   std::map<std::string, std::string> svg_of;  // plot id -> its SVG ("" : gnuplot could not draw it)
   for (std::size_t i = 0; i < to_draw.size(); ++i) svg_of[to_draw[i].id] = (*drawn_svgs)[i];

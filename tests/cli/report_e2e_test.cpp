@@ -418,6 +418,20 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
   for (const auto& m : data["modes"]) position = position || m["mode"] == "Position";
   EXPECT_TRUE(position) << data["modes"].dump();
 
+  // On the static page each time plot has both windows labelled (gnuplot's labels).
+  auto static_run = test::run_hitl({"report", dir + "/flight.tlog", "--static", "-o", dir + "/static.html"});
+  ASSERT_EQ(static_run.exit_code, 0) << static_run.err;
+  const std::string static_page = read_file(dir + "/static.html");
+  auto count = [&](const std::string& needle) {
+    std::size_t n = 0;
+    for (std::size_t at = 0; (at = static_page.find(needle, at)) != std::string::npos; at += needle.size()) ++n;
+    return n;
+  };
+  const std::size_t time_plots = figures_of(static_page).size() - 1;  // all but the top view
+  EXPECT_GE(time_plots, 10u);
+  EXPECT_EQ(count(">gps-loss<"), time_plots);
+  EXPECT_EQ(count(">imu-vibration:8,90<"), time_plots);
+
   // Both windows shaded behind every time plot, and nothing red at 5 s, before them.
   const std::string chromium = test::find_program("chromium");
   if (chromium.empty()) return;  // the demo's test says why
