@@ -75,8 +75,8 @@ void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   auto o = std::make_shared<ReportOptions>();
   auto* sub = app.add_subcommand(
       "report", "Draw a recording (.tlog) as one self-contained HTML page: flight path, altitude, tracking error, velocity, "
-                "attitude, rate tracking, motors, sticks, data path rates and jitter, loop latency, EKF test ratios, fault "
-                "windows, flight modes, events (docs/report.md)");
+                "attitude, rate tracking, motors, sticks, raw IMU and its vibration spectrum, data path rates and jitter, loop "
+                "latency, EKF test ratios, fault windows, flight modes, events (docs/report.md)");
   sub->add_option("FILE", o->tlog, "The recording: hitl sim/demo --record, hitl inspect --record, QGroundControl, MAVProxy")
       ->required()->check(CLI::ExistingFile)->type_name("FILE.tlog");
   sub->add_option("-o,--output", o->output, "The page to write (default: FILE with .html for .tlog)")->type_name("FILE.html");

@@ -139,6 +139,8 @@ void add_sticks(Sticks& sticks, double t_s, double roll, double pitch, double th
 /// the body rates ignored.
 constexpr uint16_t kPositionTargetIgnoreVelocity = 0b111000;
 constexpr uint8_t kAttitudeTargetIgnoreRates = 0b111;
+/// HIL_SENSOR's fields_updated bits 0-5: xacc, yacc, zacc, xgyro, ygyro, zgyro.
+constexpr uint32_t kHilSensorAccelAndGyro = 0b111111;
 /// RC_CHANNELS_OVERRIDE: a channel of 0 or UINT16_MAX is not overridden.
 bool rc_valid(uint16_t us) { return us >= 800 && us <= 2200; }
 double rc_stick(uint16_t us) { return (static_cast<double>(us) - 1500.0) / 500.0; }
@@ -255,9 +257,19 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
       const bool from_sim = f.sysid == sim_id;
       const bool from_pilot = f.compid == mavlink::kCompIdPathPlanner;  // pilot_record.h: under sim -t or fly trajectory
       switch (f.msgid) {
-        case msg::HilSensor::kId:
-          if (from_sim) arrive(sensor, t_s, wall_us);
+        case msg::HilSensor::kId: {
+          if (!from_sim) break;
+          arrive(sensor, t_s, wall_us);
+          const auto h = f.as<msg::HilSensor>();
+          if ((h.fields_updated & kHilSensorAccelAndGyro) != kHilSensorAccelAndGyro) break;
+          log.imu.t_s.push_back(t_s);
+          const std::array<float, 3> accel = {h.xacc, h.yacc, h.zacc}, gyro = {h.xgyro, h.ygyro, h.zgyro};
+          for (std::size_t k = 0; k < 3; ++k) {
+            log.imu.accel_FRD_m_s2[k].push_back(accel[k]);
+            log.imu.gyro_FRD_deg_s[k].push_back(gyro[k] * kRadToDeg);
+          }
           break;
+        }
         case msg::HilGps::kId:
           if (from_sim) arrive(gps, t_s, wall_us);
           break;

@@ -55,6 +55,14 @@ struct Sticks {
   std::size_t size() const { return roll.size(); }
 };
 
+/// The simulator's IMU as it sent it (HIL_SENSOR): specific force and body rates, FRD.
+struct ImuTrack {
+  std::vector<double> t_s;
+  std::array<std::vector<double>, 3> accel_FRD_m_s2;  ///< xacc, yacc, zacc
+  std::array<std::vector<double>, 3> gyro_FRD_deg_s;  ///< xgyro, ygyro, zgyro
+  std::size_t size() const { return t_s.size(); }
+};
+
 /// One data path's arrivals in 1 s windows of the log's time: rate per second of that time and the
 /// standard deviation of the wall-clock inter-arrival time.
 struct PathTiming {
@@ -155,6 +163,7 @@ struct FlightLog {
   RateTrack estimate_rates;         ///< ATTITUDE rollspeed, pitchspeed, yawspeed
   Sticks manual_control;            ///< MANUAL_CONTROL (any sender)
   Sticks rc_override;               ///< RC_CHANNELS_OVERRIDE (any sender)
+  ImuTrack imu;                     ///< HIL_SENSOR from the simulator whose fields_updated has the accelerometer and gyro
   Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err from the pilot: what the tracking RMS/max are of
   std::optional<TrackingSummary> tracking;
   std::array<Series, 4> motors;  ///< HIL_ACTUATOR_CONTROLS controls[0..3]

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <tuple>
+
+#include "engine/report/spectrum.h"
 
 namespace hitl::report {
 
@@ -26,6 +29,11 @@ PlotSeries thinned(std::string title, SeriesStyle style, const std::vector<doubl
 }
 
 namespace {
+
+/// Samples per segment of the vibration spectrum: 2 s at 250 Hz, 0.49 Hz apart.
+constexpr std::size_t kVibrationSegment = 512;
+/// The caption names each axis' strongest frequency from here up (below: the flight's own motion).
+constexpr double kVibrationAbove_Hz = 5.0;
 
 std::vector<double> negated(const std::vector<double>& v) {
   std::vector<double> out(v.size());
@@ -211,6 +219,45 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
                     : "RC_CHANNELS_OVERRIDE channels 1 to 4 (roll, pitch, throttle, yaw), each (us - 1500) / 500";
     if (p.series.empty()) p.sources = "MANUAL_CONTROL or RC_CHANNELS_OVERRIDE";
     else if (manual && log.rc_override.size() > 0) p.note = "the log has RC_CHANNELS_OVERRIDE too: MANUAL_CONTROL is drawn";
+    push(std::move(p));
+  }
+  const std::array<const char*, 3> imu_axes = {"x (forward)", "y (right)", "z (down)"};
+  {
+    Plot a{"imu-accel", "Raw IMU: accelerometer", time_label, "specific force, body FRD (m/s^2)", {}, true, false, ""};
+    Plot g{"imu-gyro", "Raw IMU: gyro", time_label, "body rate, FRD (deg/s)", {}, true, false, ""};
+    for (std::size_t k = 0; k < 3; ++k) {
+      add_if(a, thinned(imu_axes[k], SeriesStyle::Plain, log.imu.t_s, log.imu.accel_FRD_m_s2[k], n));
+      add_if(g, thinned(imu_axes[k], SeriesStyle::Plain, log.imu.t_s, log.imu.gyro_FRD_deg_s[k], n));
+    }
+    a.sources = "HIL_SENSOR xacc, yacc, zacc from the simulator (the IMU as the flight stack received it)";
+    g.sources = "HIL_SENSOR xgyro, ygyro, zgyro from the simulator (the IMU as the flight stack received it)";
+    push(std::move(a));
+    push(std::move(g));
+  }
+  {
+    const double rate_hz = sample_rate_hz(log.imu.t_s);
+    Plot p{"vibration", "Vibration: accelerometer spectrum", "frequency (Hz)", "amplitude (m/s^2)", {}, false, false, ""};
+    std::size_t segments = 0;
+    std::string peaks;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto spectrum = amplitude_spectrum(log.imu.accel_FRD_m_s2[k], rate_hz, kVibrationSegment);
+      segments = spectrum.segments;
+      std::optional<std::size_t> best;  // the strongest above the flight's own motion
+      for (std::size_t i = 0; i < spectrum.freq_hz.size(); ++i)
+        if (spectrum.freq_hz[i] >= kVibrationAbove_Hz && (!best || spectrum.amplitude[i] > spectrum.amplitude[*best])) best = i;
+      if (best)
+        peaks += std::string(peaks.empty() ? "" : ", ") + imu_axes[k] + " " + figure("%.1f", spectrum.freq_hz[*best]) + " Hz (" +
+                 figure("%.2f", spectrum.amplitude[*best]) + " m/s^2)";
+      add_if(p, thinned(imu_axes[k], SeriesStyle::Plain, spectrum.freq_hz, spectrum.amplitude, n));
+    }
+    p.sources = "HIL_SENSOR xacc, yacc, zacc from the simulator";
+    if (!p.series.empty())
+      p.note = "Welch's method over the whole log: " + std::to_string(segments) + " segments of " + std::to_string(kVibrationSegment) +
+               " samples at the IMU's " + figure("%.0f", rate_hz) + " Hz (" + figure("%.2f", rate_hz / kVibrationSegment) +
+               " Hz apart), each half over the one before, its mean removed, Hann window; the amplitude of a sinusoid at each "
+               "frequency, RMS over the segments (a vibration of a few seconds shows diluted by the rest). Above half the IMU's "
+               "rate (" + figure("%.0f", rate_hz / 2) + " Hz) a vibration folds back below it. Strongest from " +
+               figure("%.0f", kVibrationAbove_Hz) + " Hz: " + peaks;
     push(std::move(p));
   }
   {

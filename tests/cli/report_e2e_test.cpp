@@ -145,7 +145,7 @@ std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& ht
 
 /// Counted straight from the recording with the codec, not with the report's reader.
 struct RecordingCounts {
-  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0, manual_control = 0;
+  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0, manual_control = 0, hil_sensor = 0;
   std::size_t latency_p50 = 0, latency_p99 = 0, latency_max = 0;  ///< the session's status once something was answered (not -1)
 };
 
@@ -167,6 +167,7 @@ RecordingCounts count_recording(const std::string& path) {
       if (!sim && f.is<msg::Attitude>()) ++c.attitude;
       if (!sim && f.is<msg::HilActuatorControls>()) ++c.actuators;
       if (f.is<msg::ManualControl>()) ++c.manual_control;
+      if (sim && f.is<msg::HilSensor>()) ++c.hil_sensor;
       if (sim && f.is<msg::NamedValueInt>() && f.as<msg::NamedValueInt>().value >= 0) {
         const auto name = mavlink::text_of(f.as<msg::NamedValueInt>().name);
         c.latency_p50 += name == kStatusLoopLatencyP50Name ? 1 : 0;
@@ -297,8 +298,8 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
     SCOPED_TRACE(which);
     const auto figures = figures_of(*text);
     for (const char* id : {"top-view", "altitude", "tracking-error", "velocity-north", "velocity-east", "velocity-up", "attitude-roll",
-                           "attitude-pitch", "attitude-yaw", "rate-roll", "rate-pitch", "rate-yaw", "motors", "sticks", "rates",
-                           "jitter", "loop-latency", "ekf"})
+                           "attitude-pitch", "attitude-yaw", "rate-roll", "rate-pitch", "rate-yaw", "motors", "sticks", "imu-accel",
+                           "imu-gyro", "vibration", "rates", "jitter", "loop-latency", "ekf"})
       EXPECT_TRUE(figures.count(id)) << "no figure " << id;
     EXPECT_EQ(text->find("<figure id=\"lacks-"), std::string::npos) << "the demo's log has every plot's data";
     // Each plot says which messages it comes from; the emulated board streams no ATTITUDE_TARGET.
@@ -327,6 +328,8 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
     EXPECT_EQ(samples("velocity-up", "estimate"), counts.estimate);
     EXPECT_EQ(samples("rate-roll", "truth"), counts.truth);
     EXPECT_EQ(samples("sticks", "throttle"), counts.manual_control);
+    EXPECT_EQ(samples("imu-gyro", "z (down)"), counts.hil_sensor);
+    EXPECT_EQ(samples("vibration", "z (down)"), 257u) << "0 to 125 Hz in 512-sample segments";
     EXPECT_EQ(samples("loop-latency", "p50"), counts.latency_p50);
     EXPECT_EQ(samples("loop-latency", "p99"), counts.latency_p99);
     EXPECT_EQ(samples("loop-latency", "max"), counts.latency_max);
@@ -418,6 +421,21 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
   for (const auto& m : data["modes"]) position = position || m["mode"] == "Position";
   EXPECT_TRUE(position) << data["modes"].dump();
 
+  // The vibration at 90 Hz is the accelerometer spectrum's peak (at 250 Hz no fold: below 125 Hz).
+  {
+    auto log = report::read_flight_log(dir + "/flight.tlog");
+    ASSERT_TRUE(log) << log.error().message;
+    for (const auto& p : report::plots_of(*log))
+      if (p.id == "vibration")
+        for (const auto& series : p.series) {
+          if (series.title == "z (down)") continue;  // the vibration is along x and y
+          std::size_t best = 0;
+          for (std::size_t k = 0; k < series.y.size(); ++k)
+            if (series.x[k] > 20 && series.y[k] > series.y[best]) best = k;
+          EXPECT_NEAR(series.x[best], 90, 1) << series.title;
+          EXPECT_GT(series.y[best], 1.0) << series.title << ": 8 m/s^2 for 2 s of the flight";
+        }
+  }
   // On the static page each time plot has both windows labelled (gnuplot's labels).
   auto static_run = test::run_hitl({"report", dir + "/flight.tlog", "--static", "-o", dir + "/static.html"});
   ASSERT_EQ(static_run.exit_code, 0) << static_run.err;
@@ -427,7 +445,9 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
     for (std::size_t at = 0; (at = static_page.find(needle, at)) != std::string::npos; at += needle.size()) ++n;
     return n;
   };
-  const std::size_t time_plots = figures_of(static_page).size() - 1;  // all but the top view
+  const auto static_figures = figures_of(static_page);
+  ASSERT_TRUE(static_figures.count("top-view") && static_figures.count("vibration"));
+  const std::size_t time_plots = static_figures.size() - 2;  // all but the top view and the spectrum
   EXPECT_GE(time_plots, 10u);
   EXPECT_EQ(count(">gps-loss<"), time_plots);
   EXPECT_EQ(count(">imu-vibration:8,90<"), time_plots);
