@@ -75,7 +75,7 @@ void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) 
   auto o = std::make_shared<ReportOptions>();
   auto* sub = app.add_subcommand(
       "report", "Draw a recording (.tlog) as one self-contained HTML page: flight path, altitude, tracking error, velocity, "
-                "attitude, rate tracking, motors, sticks, raw IMU and its vibration spectrum, data path rates and jitter, loop "
+                "attitude, rate tracking, motors, sticks, raw IMU and its vibration spectrum, GPS quality, data path rates and jitter, loop "
                 "latency, EKF test ratios, fault windows, flight modes, events (docs/report.md)");
   sub->add_option("FILE", o->tlog, "The recording: hitl sim/demo --record, hitl inspect --record, QGroundControl, MAVProxy")
       ->required()->check(CLI::ExistingFile)->type_name("FILE.tlog");

@@ -139,6 +139,13 @@ void add_sticks(Sticks& sticks, double t_s, double roll, double pitch, double th
 /// the body rates ignored.
 constexpr uint16_t kPositionTargetIgnoreVelocity = 0b111000;
 constexpr uint8_t kAttitudeTargetIgnoreRates = 0b111;
+void add_gps(GpsQuality& q, double t_s, uint8_t fix_type, uint8_t satellites, uint16_t eph, uint16_t epv) {
+  add(q.fix_type, t_s, fix_type);
+  if (satellites != UINT8_MAX) add(q.satellites, t_s, satellites);
+  if (eph != UINT16_MAX) add(q.eph, t_s, eph / 100.0);
+  if (epv != UINT16_MAX) add(q.epv, t_s, epv / 100.0);
+}
+
 /// HIL_SENSOR's fields_updated bits 0-5: xacc, yacc, zacc, xgyro, ygyro, zgyro.
 constexpr uint32_t kHilSensorAccelAndGyro = 0b111111;
 /// RC_CHANNELS_OVERRIDE: a channel of 0 or UINT16_MAX is not overridden.
@@ -270,9 +277,18 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           }
           break;
         }
-        case msg::HilGps::kId:
-          if (from_sim) arrive(gps, t_s, wall_us);
+        case msg::HilGps::kId: {
+          if (!from_sim) break;
+          arrive(gps, t_s, wall_us);
+          const auto g = f.as<msg::HilGps>();
+          add_gps(log.sent_gps, t_s, g.fix_type, g.satellites_visible, g.eph, g.epv);
           break;
+        }
+        case msg::GpsRawInt::kId: {
+          const auto g = f.as<msg::GpsRawInt>();
+          if (!from_sim) add_gps(log.vehicle_gps, t_s, g.fix_type, g.satellites_visible, g.eph, g.epv);
+          break;
+        }
         case msg::Odometry::kId: {
           const auto o = f.as<msg::Odometry>();
           if (from_sim && f.compid == kVioComponentId) arrive(vio, t_s, wall_us);

@@ -63,6 +63,14 @@ struct ImuTrack {
   std::size_t size() const { return t_s.size(); }
 };
 
+/// A GPS's quality as a message said it: fix type (0-1 none, 2 2D, 3 3D, ...), satellites visible,
+/// eph and epv over 100 (HDOP and VDOP by MAVLink's words; metres as PX4 reads HIL_GPS); an unknown
+/// value (UINT16_MAX, UINT8_MAX) is left out.
+struct GpsQuality {
+  Series fix_type, satellites, eph, epv;
+  std::size_t size() const { return fix_type.size(); }
+};
+
 /// One data path's arrivals in 1 s windows of the log's time: rate per second of that time and the
 /// standard deviation of the wall-clock inter-arrival time.
 struct PathTiming {
@@ -163,6 +171,8 @@ struct FlightLog {
   RateTrack estimate_rates;         ///< ATTITUDE rollspeed, pitchspeed, yawspeed
   Sticks manual_control;            ///< MANUAL_CONTROL (any sender)
   Sticks rc_override;               ///< RC_CHANNELS_OVERRIDE (any sender)
+  GpsQuality sent_gps;              ///< HIL_GPS from the simulator (what the flight stack was given)
+  GpsQuality vehicle_gps;           ///< GPS_RAW_INT from the vehicle (what it made of it)
   ImuTrack imu;                     ///< HIL_SENSOR from the simulator whose fields_updated has the accelerometer and gyro
   Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err from the pilot: what the tracking RMS/max are of
   std::optional<TrackingSummary> tracking;

@@ -261,6 +261,21 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     push(std::move(p));
   }
   {
+    Plot p{"gps", "GPS quality", time_label, "fix type, satellites, eph and epv / 100", {}, true, false, ""};
+    for (const auto& [who, q] : {std::pair{"HIL_GPS", &log.sent_gps}, std::pair{"GPS_RAW_INT", &log.vehicle_gps}}) {
+      const std::string tail = std::string(" (") + who + ")";
+      add_if(p, thinned("fix type" + tail, SeriesStyle::Plain, q->fix_type.t_s, q->fix_type.value, n));
+      add_if(p, thinned("satellites" + tail, SeriesStyle::Plain, q->satellites.t_s, q->satellites.value, n));
+      add_if(p, thinned("eph" + tail, SeriesStyle::Plain, q->eph.t_s, q->eph.value, n));
+      add_if(p, thinned("epv" + tail, SeriesStyle::Plain, q->epv.t_s, q->epv.value, n));
+    }
+    p.sources = "HIL_GPS from the simulator (what the flight stack was given), GPS_RAW_INT from the vehicle";
+    if (!p.series.empty())
+      p.note = "fix type 0-1 none, 2 2D, 3 3D; eph and epv over 100: HDOP and VDOP by MAVLink's words, metres as PX4 reads "
+               "HIL_GPS; a gps-loss fault is a gap in the HIL_GPS series (drawn across on the interactive page: see its band)";
+    push(std::move(p));
+  }
+  {
     Plot p{"rates", "Data path rates against expected", time_label, "messages per second of the log's time", {}, true, false, ""};
     Plot j{"jitter", "Data path jitter", time_label, "wall-clock inter-arrival std (ms)", {}, true, false, ""};
     for (const auto& path : log.paths) {

@@ -145,7 +145,7 @@ std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& ht
 
 /// Counted straight from the recording with the codec, not with the report's reader.
 struct RecordingCounts {
-  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0, manual_control = 0, hil_sensor = 0;
+  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0, manual_control = 0, hil_sensor = 0, hil_gps = 0;
   std::size_t latency_p50 = 0, latency_p99 = 0, latency_max = 0;  ///< the session's status once something was answered (not -1)
 };
 
@@ -168,6 +168,7 @@ RecordingCounts count_recording(const std::string& path) {
       if (!sim && f.is<msg::HilActuatorControls>()) ++c.actuators;
       if (f.is<msg::ManualControl>()) ++c.manual_control;
       if (sim && f.is<msg::HilSensor>()) ++c.hil_sensor;
+      if (sim && f.is<msg::HilGps>()) ++c.hil_gps;
       if (sim && f.is<msg::NamedValueInt>() && f.as<msg::NamedValueInt>().value >= 0) {
         const auto name = mavlink::text_of(f.as<msg::NamedValueInt>().name);
         c.latency_p50 += name == kStatusLoopLatencyP50Name ? 1 : 0;
@@ -299,7 +300,7 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
     const auto figures = figures_of(*text);
     for (const char* id : {"top-view", "altitude", "tracking-error", "velocity-north", "velocity-east", "velocity-up", "attitude-roll",
                            "attitude-pitch", "attitude-yaw", "rate-roll", "rate-pitch", "rate-yaw", "motors", "sticks", "imu-accel",
-                           "imu-gyro", "vibration", "rates", "jitter", "loop-latency", "ekf"})
+                           "imu-gyro", "vibration", "gps", "rates", "jitter", "loop-latency", "ekf"})
       EXPECT_TRUE(figures.count(id)) << "no figure " << id;
     EXPECT_EQ(text->find("<figure id=\"lacks-"), std::string::npos) << "the demo's log has every plot's data";
     // Each plot says which messages it comes from; the emulated board streams no ATTITUDE_TARGET.
@@ -329,6 +330,7 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
     EXPECT_EQ(samples("rate-roll", "truth"), counts.truth);
     EXPECT_EQ(samples("sticks", "throttle"), counts.manual_control);
     EXPECT_EQ(samples("imu-gyro", "z (down)"), counts.hil_sensor);
+    EXPECT_EQ(samples("gps", "satellites (HIL_GPS)"), counts.hil_gps);
     EXPECT_EQ(samples("vibration", "z (down)"), 257u) << "0 to 125 Hz in 512-sample segments";
     EXPECT_EQ(samples("loop-latency", "p50"), counts.latency_p50);
     EXPECT_EQ(samples("loop-latency", "p99"), counts.latency_p99);
