@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/report_output.h"
+#include "cli/version.h"
 #include "engine/report/report.h"
 
 namespace hitl::cli {
@@ -19,7 +20,9 @@ std::string default_report_path(const std::string& tlog_path) {
 Expected<report::ReportResult> write_report_and_say(const GlobalOptions& g, const std::string& command,
                                                     const std::string& tlog_path, const std::string& html_path,
                                                     const report::ReportOptions& report_options) {
-  auto r = report::write_report(tlog_path, html_path, report_options);
+  report::ReportOptions options = report_options;
+  options.generator = std::string("hitl ") + kVersion;
+  auto r = report::write_report(tlog_path, html_path, options);
   if (!r) {
     log_error(command, (command == "report" ? "" : "--report: ") + r.error().message);
     return r.error();

@@ -255,7 +255,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     }
     const uint64_t wall_us = r.time_unix_us;
     const double t_s = clock.t_s(wall_us);
-    if (!first_wall_us) first_wall_us = wall_us, first_t_s = t_s;
+    if (!first_wall_us) first_wall_us = wall_us, first_t_s = t_s, log.first_unix_us = wall_us;
     last_wall_us = wall_us;
     last_t_s = t_s;
     parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
@@ -390,7 +390,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           const auto mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
           if (v.armed != armed) event(t_s, Severity::Info, source_name(f, sim_id), armed ? "armed" : "disarmed");
           if (v.mode != mode) event(t_s, Severity::Info, source_name(f, sim_id), "mode " + mode);
-          if (!mode_vehicle) mode_vehicle = f.sysid;
+          if (!mode_vehicle) mode_vehicle = f.sysid, log.vehicle = VehicleInfo{f.sysid, hb.type, hb.autopilot};
           if (*mode_vehicle == f.sysid && v.mode != mode) {
             if (!log.modes.empty()) log.modes.back().end_s = t_s;
             log.modes.push_back({mode, t_s, t_s});

@@ -140,8 +140,18 @@ struct Px4Estimate {
   std::vector<std::string> notes;  ///< the reader's notes and what was not drawn, in words
 };
 
+/// The vehicle as its first HEARTBEAT said it.
+struct VehicleInfo {
+  uint8_t sysid = 0;
+  uint8_t type = 0;       ///< MAV_TYPE (2: quadrotor)
+  uint8_t autopilot = 0;  ///< MAV_AUTOPILOT (12: PX4)
+};
+
 struct FlightLog {
   std::string path;
+  std::optional<uint64_t> first_unix_us;  ///< the first record's tlog timestamp (UNIX time, us)
+  std::optional<VehicleInfo> vehicle;     ///< the first vehicle heard
+  std::string generator;                  ///< what draws the page ("hitl 0.1.0"; set by write_report)
   uint64_t records = 0;         ///< tlog records read
   uint64_t frames = 0;          ///< MAVLink frames in them
   uint64_t skipped_bytes = 0;   ///< corruption the reader stepped over

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <ctime>
 #include <sstream>
 
 #include "engine/report/fault_windows.h"
@@ -63,6 +64,20 @@ std::string summary_sections(const FlightLog& log) {
   auto row = [&](const std::string& name, const std::string& value) {
     h << "<tr><th>" << html_escaped(name) << "</th><td>" << html_escaped(value) << "</td></tr>\n";
   };
+  if (log.first_unix_us) {
+    const std::time_t t = static_cast<std::time_t>(*log.first_unix_us / 1'000'000);
+    std::tm utc{};
+    char when[40];
+    if (gmtime_r(&t, &utc) != nullptr && std::strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S UTC", &utc) > 0)
+      row("recorded", std::string(when) + " (the first record's time)");
+  }
+  if (log.vehicle) {
+    const auto& v = *log.vehicle;
+    const std::string type = v.type == 2 ? "quadrotor" : "MAV_TYPE " + std::to_string(v.type);
+    const std::string autopilot = v.autopilot == 12 ? "PX4" : "MAV_AUTOPILOT " + std::to_string(v.autopilot);
+    row("vehicle", "system " + std::to_string(v.sysid) + ": " + type + ", autopilot " + autopilot + " (its first HEARTBEAT)");
+  }
+  if (!log.generator.empty()) row("drawn by", log.generator);
   row(log.simulated_time ? "simulated time" : "duration", fixed(log.duration_s, 1) + " s");
   row("wall time", fixed(log.wall_duration_s, 1) + " s");
   row("records / frames", std::to_string(log.records) + " / " + std::to_string(log.frames));

@@ -19,6 +19,7 @@ Expected<ReportResult> write_report(const std::string& tlog_path, const std::str
   const double start_s = monotonic_s();
   auto log = read_flight_log(tlog_path);
   if (!log) return log.error();
+  log->generator = options.generator;
   std::string ulog_path = options.ulog_path;
   const bool found = ulog_path.empty() && options.find_ulog;
   if (found) ulog_path = find_px4_ulog(tlog_path).value_or("");

@@ -18,6 +18,7 @@ struct ReportOptions {
   bool find_ulog = true;   ///< the newest FILE.px4/log/**.ulg beside FILE.tlog, when there is one
   bool static_page = false;  ///< --static: gnuplot's SVGs, no script (else the interactive page, interactive.h)
   std::string dygraphs_dir = kDebianDygraphsDir;  ///< --dygraphs: where libjs-dygraphs' files are
+  std::string generator;   ///< "hitl 0.1.0": said in the page's header ("" : not said)
 };
 
 struct ReportResult {

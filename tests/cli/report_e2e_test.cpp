@@ -288,6 +288,10 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
                                    std::to_string(trajectory["samples"].get<uint64_t>()) + " samples)";
   EXPECT_NE(page.find(tracking_row), std::string::npos) << trajectory.dump();
   EXPECT_NE(static_page.find(tracking_row), std::string::npos) << trajectory.dump();
+  // The header: when it was recorded, the vehicle, what drew it.
+  for (const char* row : {"<tr><th>recorded</th><td>20", "<tr><th>vehicle</th><td>system 1: quadrotor, autopilot PX4",
+                          "<tr><th>drawn by</th><td>hitl "})
+    EXPECT_NE(page.find(row), std::string::npos) << row;
 
   // Each plot's series, on both pages: drawn with the points claimed, of the samples recorded.
   const auto counts = count_recording(tlog);
