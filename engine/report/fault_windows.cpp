@@ -30,11 +30,12 @@ std::optional<FaultChangeText> parse_fault_change(std::string_view text) {
   FaultChangeText c;
   if (!take(text, at, "t=")) return std::nullopt;
   const auto t_s = number_at(text, at);
-  if (!t_s || !take(text, at, " s fault ")) return std::nullopt;
+  if (!t_s || !(*t_s >= 0 && *t_s <= kMaxFaultTime_s) || !take(text, at, " s fault ")) return std::nullopt;
   c.t_s = *t_s;
   const auto space = text.find(' ', at);
   if (space == std::string_view::npos || space == at) return std::nullopt;
   c.label = std::string(text.substr(at, space - at));
+  if (c.label.front() == ':') return std::nullopt;  // arguments without a fault's name
   at = space;
   if (take(text, at, " ended")) return at == text.size() ? std::optional(c) : std::nullopt;
   if (!take(text, at, " started")) return std::nullopt;  // "refused: ..." is no window
@@ -42,7 +43,8 @@ std::optional<FaultChangeText> parse_fault_change(std::string_view text) {
   if (at == text.size()) return c;
   if (!take(text, at, " (")) return std::nullopt;
   c.duration_s = number_at(text, at);
-  if (!c.duration_s || !take(text, at, " s)") || at != text.size()) return std::nullopt;
+  if (!c.duration_s || !(*c.duration_s >= 0 && *c.duration_s <= kMaxFaultTime_s) || !take(text, at, " s)") || at != text.size())
+    return std::nullopt;
   return c;
 }
 

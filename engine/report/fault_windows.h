@@ -13,6 +13,9 @@
 
 namespace hitl::report {
 
+/// A time or duration beyond this (or not a number: "nan", "inf") is no fault change.
+inline constexpr double kMaxFaultTime_s = 1e9;
+
 /// One STATUSTEXT of a fault starting or ending, parsed; nullopt when `text` is not one.
 struct FaultChangeText {
   double t_s = 0;                     ///< the simulator's time in the text

@@ -21,7 +21,9 @@ TEST(FaultWindows, StartsAndEndsAsTheSimulatorSaysThem) {
   EXPECT_FALSE(c->duration_s);
   for (const char* not_one : {"t=1.000 s fault gps-loss refused: 8 faults are active, the limit", "fault gps-loss started",
                               "t=x s fault gps-loss started", "t=1.000 s fault gps-loss started (5 s) and more", "t=1.000 s fault  ended",
-                              "trajectory: HOLD (trajectory flown)", ""})
+                              "trajectory: HOLD (trajectory flown)", "", "t=nan s fault gps-loss started",
+                              "t=inf s fault gps-loss ended", "t=-1 s fault gps-loss ended", "t=1e300 s fault gps-loss ended",
+                              "t=1 s fault gps-loss started (nan s)", "t=1 s fault :8,90 started"})
     EXPECT_FALSE(parse_fault_change(not_one)) << not_one;
 }
 
