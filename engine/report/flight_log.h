@@ -130,6 +130,8 @@ struct Px4Estimate {
   std::string version;           ///< PX4's "v1.16.0" (ver_sw_release), "" when the log has none
   Track position;                ///< vehicle_local_position x, y, z while xy_valid and z_valid
   AttitudeTrack attitude;        ///< vehicle_attitude q
+  RateTrack rate_setpoint;       ///< vehicle_rates_setpoint roll, pitch, yaw (its rate controller's input), when logged
+  RateTrack rates;               ///< vehicle_angular_velocity xyz (what its rate controller saw), when logged
   Track minus_truth;             ///< position minus the truth (interpolated at each time), where both are
   std::array<double, 3> mean_offset_NED_m{};  ///< the mean of minus_truth
   double rms_m = 0;              ///< of minus_truth's length

@@ -194,10 +194,18 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     add_if(p, thinned("setpoint", SeriesStyle::Setpoint, log.rate_setpoint.t_s, log.rate_setpoint.*member, n));
     add_if(p, thinned("truth", SeriesStyle::Truth, log.truth_rates.t_s, log.truth_rates.*member, n));
     add_if(p, thinned("estimate", SeriesStyle::Estimate, log.estimate_rates.t_s, log.estimate_rates.*member, n));
-    p.sources = "ATTITUDE_TARGET body rates (setpoint), ODOMETRY with estimator MOCAP from the simulator, rollspeed, pitchspeed, "
-                "yawspeed (truth), ATTITUDE rollspeed, pitchspeed, yawspeed (estimate)";
-    if (log.rate_setpoint.size() == 0 && (log.truth_rates.size() > 0 || log.estimate_rates.size() > 0))
-      p.note = "no rate setpoint: this log has no ATTITUDE_TARGET with body rates (the vehicle did not stream it on this link)";
+    const bool px4_rates = log.px4 && (log.px4->rate_setpoint.size() > 0 || log.px4->rates.size() > 0);
+    if (log.px4) {
+      add_if(p, thinned("PX4 setpoint (ULog)", SeriesStyle::Setpoint, log.px4->rate_setpoint.t_s, log.px4->rate_setpoint.*member, n));
+      add_if(p, thinned("PX4 (ULog)", SeriesStyle::Plain, log.px4->rates.t_s, log.px4->rates.*member, n));
+    }
+    p.sources = std::string("ATTITUDE_TARGET body rates (setpoint), ODOMETRY with estimator MOCAP from the simulator, rollspeed, "
+                            "pitchspeed, yawspeed (truth), ATTITUDE rollspeed, pitchspeed, yawspeed (estimate)") +
+                (px4_rates ? ", PX4's ULog vehicle_rates_setpoint (PX4 setpoint) and vehicle_angular_velocity (PX4)" : "");
+    if (log.rate_setpoint.size() == 0 && !(log.px4 && log.px4->rate_setpoint.size() > 0) &&
+        (log.truth_rates.size() > 0 || log.estimate_rates.size() > 0))
+      p.note = std::string("no rate setpoint: this log has no ATTITUDE_TARGET with body rates (the vehicle did not stream it on "
+                           "this link)") + (log.px4 ? " and PX4's ULog no vehicle_rates_setpoint" : "");
     push(std::move(p));
   }
   {

@@ -663,10 +663,15 @@ TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed)
   // PX4's estimate at 2.5 m from 1 s to 5 s of the simulator's clock, 50 Hz.
   test::ULogWriter w;
   w.format("vehicle_local_position:uint64_t timestamp;float x;float y;float z;bool xy_valid;bool z_valid;");
+  w.format("vehicle_rates_setpoint:uint64_t timestamp;float roll;float pitch;float yaw;");
   w.subscribe(0, "vehicle_local_position");
-  for (uint64_t t_us = 1'000'000; t_us <= 5'000'000; t_us += 20'000)
+  w.subscribe(1, "vehicle_rates_setpoint");
+  for (uint64_t t_us = 1'000'000; t_us <= 5'000'000; t_us += 20'000) {
     w.data(0, test::ULogWriter::raw(t_us) + test::ULogWriter::raw(0.0F) + test::ULogWriter::raw(0.0F) +
                   test::ULogWriter::raw(-2.5F) + std::string("\1\1", 2));
+    // PX4's rate controller's input: 0.5 rad/s of roll (28.6 deg/s).
+    w.data(1, test::ULogWriter::raw(t_us) + test::ULogWriter::raw(0.5F) + test::ULogWriter::raw(0.0F) + test::ULogWriter::raw(0.0F));
+  }
   std::ofstream(dir + "/px4.ulg", std::ios::binary) << w.text();
 
   auto given = test::run_hitl({"--json", "report", tlog, "--ulog", dir + "/px4.ulg", "-o", dir + "/given.html"});
@@ -678,6 +683,19 @@ TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed)
   const std::string page = read_file(dir + "/given.html");
   for (const char* id : {"px4-altitude", "px4-offset"})
     EXPECT_NE(page.find(std::string("<figure id=\"plot-") + id + "\""), std::string::npos) << id;
+  // PX4's rate setpoint from its ULog in the rate tracking plot, in deg/s.
+  bool rate_setpoint = false;
+  const auto data = page_data(page);
+  for (const auto& p : data["plots"])
+    if (p["id"] == "rate-roll")
+      for (const auto& series : p["series"])
+        if (series["title"] == "PX4 setpoint (ULog)") {
+          rate_setpoint = true;
+          EXPECT_EQ(series["t"].size(), 201u);
+          EXPECT_NEAR(series["y"][0].get<double>(), 28.6479, 1e-3);
+        }
+  EXPECT_TRUE(rate_setpoint);
+  EXPECT_EQ(page.find("no rate setpoint"), std::string::npos) << "PX4's ULog has it";
 
   // Not given: the newest FILE.px4/log/**.ulg beside FILE.tlog, said on stderr.
   std::filesystem::create_directories(dir + "/s.px4/log/2026-11-29");
