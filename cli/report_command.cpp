@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/report_output.h"
+#include "cli/version.h"
 #include "engine/report/report.h"
 
 namespace hitl::cli {
@@ -19,13 +20,17 @@ std::string default_report_path(const std::string& tlog_path) {
 Expected<report::ReportResult> write_report_and_say(const GlobalOptions& g, const std::string& command,
                                                     const std::string& tlog_path, const std::string& html_path,
                                                     const report::ReportOptions& report_options) {
-  auto r = report::write_report(tlog_path, html_path, report_options);
+  report::ReportOptions options = report_options;
+  options.generator = std::string("hitl ") + kVersion;
+  auto r = report::write_report(tlog_path, html_path, options);
   if (!r) {
     log_error(command, (command == "report" ? "" : "--report: ") + r.error().message);
     return r.error();
   }
   if (!g.json && !g.quiet) {
     char line[160];
+    if (!r->static_because.empty())
+      std::cerr << "hitl " << command << ": " << r->static_because << ": wrote the static page (gnuplot's SVGs) instead\n";
     std::snprintf(line, sizeof line, "hitl %s: report of %s: %zu plots, %.0f KiB in %.1f s%s", command.c_str(), tlog_path.c_str(),
                   r->plots, static_cast<double>(r->bytes) / 1024.0, r->seconds, r->missing.empty() ? "" : "; the log lacks:");
     std::cerr << line << '\n';
@@ -57,6 +62,7 @@ nlohmann::json report_json(const report::ReportResult& r) {
             {"lag_ms", r.px4->lag_s ? nlohmann::json(*r.px4->lag_s * 1e3) : nlohmann::json(nullptr)}};
   }
   return {{"path", r.html_path}, {"bytes", r.bytes}, {"plots", r.plots}, {"seconds", r.seconds},
+          {"interactive", r.interactive}, {"static_because", r.static_because.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.static_because)},
           {"lacks", r.missing}, {"skipped", r.skipped}, {"ulog", ulog}};
 }
 
@@ -66,11 +72,14 @@ void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) 
     std::string output;
     std::string ulog;
     bool no_ulog = false;
+    bool static_page = false;
+    std::string dygraphs = report::kDebianDygraphsDir;
   };
   auto o = std::make_shared<ReportOptions>();
   auto* sub = app.add_subcommand(
-      "report", "Draw a recording (.tlog) as one self-contained HTML page: flight path, altitude, tracking error, attitude, "
-                "motors, data path rates and jitter, EKF test ratios, events (docs/report.md)");
+      "report", "Draw a recording (.tlog) as one self-contained HTML page: flight path, altitude, tracking error, velocity, "
+                "attitude, rate tracking, motors, sticks, raw IMU and its vibration spectrum, GPS quality, data path rates and jitter, loop "
+                "latency, EKF test ratios, fault windows, flight modes, events (docs/report.md)");
   sub->add_option("FILE", o->tlog, "The recording: hitl sim/demo --record, hitl inspect --record, QGroundControl, MAVProxy")
       ->required()->check(CLI::ExistingFile)->type_name("FILE.tlog");
   sub->add_option("-o,--output", o->output, "The page to write (default: FILE with .html for .tlog)")->type_name("FILE.html");
@@ -80,11 +89,21 @@ void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) 
                    ->check(CLI::ExistingFile)
                    ->type_name("PX4.ulg");
   sub->add_flag("--no-ulog", o->no_ulog, "Merge no ULog, even one beside the recording")->excludes(ulog);
-  sub->footer("Prints the page's path on stdout (--json: a summary line with path, bytes, plots, seconds, lacks, skipped, ulog). Needs gnuplot (Debian: gnuplot-nox).\n"
+  auto* static_page = sub->add_flag("--static", o->static_page,
+                                    "Write the static page: gnuplot's SVGs and no script (for mail and CI artefacts); default: the "
+                                    "interactive page (dygraphs: zoom and pan linked across the time plots)");
+  sub->add_option("--dygraphs", o->dygraphs,
+                  "Where Debian's libjs-dygraphs is (dygraph.min.js, dygraph.min.css, extras/synchronizer.js), inlined into "
+                  "the interactive page; without them the static page is written, said on stderr")
+      ->capture_default_str()
+      ->type_name("DIR")
+      ->excludes(static_page);
+  sub->footer("Prints the page's path on stdout (--json: a summary line with path, bytes, plots, seconds, interactive, static_because, lacks, skipped, ulog). "
+              "Needs gnuplot (Debian: gnuplot-nox) and, for the interactive page, libjs-dygraphs.\n"
               "Exit: 0 written, 2 bad input (not a tlog, a --ulog that is no ULog or not of this recording) or gnuplot missing, 1 drawing or writing failed.");
   sub->callback([&options, &state, o]() {
     const std::string out = o->output.empty() ? default_report_path(o->tlog) : o->output;
-    auto r = write_report_and_say(options, "report", o->tlog, out, {o->ulog, !o->no_ulog});
+    auto r = write_report_and_say(options, "report", o->tlog, out, {o->ulog, !o->no_ulog, o->static_page, o->dygraphs});
     if (!r) {
       state.exit_code = exit_code(r.error());
       return;

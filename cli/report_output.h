@@ -21,7 +21,7 @@ Expected<report::ReportResult> write_report_and_say(const GlobalOptions& options
                                                     const std::string& tlog_path, const std::string& html_path,
                                                     const report::ReportOptions& report_options = {});
 
-/// The report's JSON: {"path", "bytes", "plots", "seconds", "lacks", "skipped", "ulog"} ("ulog": null
+/// The report's JSON: {"path", "bytes", "plots", "seconds", "interactive", "static_because", "lacks", "skipped", "ulog"} ("ulog": null
 /// or {"path", "found", "version", "positions", "offset_m": {north, east, up, rms}, "lag_ms"}).
 nlohmann::json report_json(const report::ReportResult& result);
 

@@ -41,7 +41,8 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # adb carries the board link over USB without USB-Ethernet (hitl sim --adb, hitl bridge --adb).
 set(CPACK_DEBIAN_HITL_PACKAGE_SUGGESTS "adb, bash-completion")
 # gnuplot draws hitl report's plots (and the report hitl demo writes); a program, not a library.
-set(CPACK_DEBIAN_HITL_PACKAGE_RECOMMENDS "gnuplot-nox")
+# libjs-dygraphs is inlined into the interactive page (read at run time from /usr/share/javascript).
+set(CPACK_DEBIAN_HITL_PACKAGE_RECOMMENDS "gnuplot-nox, libjs-dygraphs")
 # The package's one-line summary is the project's DESCRIPTION; this is the text below it.
 set(CPACK_DEBIAN_HITL_DESCRIPTION
   "hitl runs and diagnoses hardware-in-the-loop simulation of a PX4 x500 quadcopter whose flight

@@ -9,11 +9,10 @@ _hitl_messages='ACTUATOR_OUTPUT_STATUS ATTITUDE ATTITUDE_QUATERNION ATTITUDE_TAR
 # _hitl_commands PATH: the subcommands of a command path ('' is hitl, 'params' is hitl params).
 _hitl_commands() {
     case "$1" in
-        '') echo 'inspect sim target replay params arm disarm shell fly doctor board bridge demo campaign report completion' ;;
+        '') echo 'inspect sim target replay params arm disarm shell fly doctor board bridge demo report completion' ;;
         'params') echo 'show get set diff check export load reset' ;;
         'fly') echo 'takeoff land hold trajectory' ;;
         'board') echo 'install start stop status restore' ;;
-        'campaign') echo 'run history' ;;
     esac
 }
 
@@ -21,7 +20,7 @@ _hitl_commands() {
 _hitl_options() {
     case "$1" in
         '') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --allan --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
         'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --px4 --px4-param --px4-speed --px4-timeout --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise --rangefinder -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --report --version --json -v --verbose -q --quiet --dialect --config' ;;
         'target') echo '-h --help --bind --hil-port --gcs-port --vio-port --lockstep --duration --fault --version --json -v --verbose -q --quiet --dialect --config' ;;
         'replay') echo '-h --help -i --target-ip --hil-port --vio-port --local-port --bind --lockstep --lockstep-timeout --record --compare --tolerance --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -42,7 +41,7 @@ _hitl_options() {
         'fly land') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly hold') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly trajectory') echo '-h --help --rate --mode --record --report --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --px4 --px4-param --vehicle --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board install') echo '-h --help --adb --adb-serial --packages --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board start') echo '-h --help --adb --adb-serial --reset-params --wait --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -51,10 +50,7 @@ _hitl_options() {
         'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --queue-ms --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
         'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --px4 --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'campaign') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'campaign run') echo '-h --help -j --jobs --out --only --resume --rerun-failed --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'campaign history') echo '-h --help --history --last --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'report') echo '-h --help -o --output --ulog --no-ulog --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'report') echo '-h --help -o --output --ulog --no-ulog --static --dygraphs --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
 }
@@ -63,8 +59,8 @@ _hitl_options() {
 # file [PATTERN], dir, messages, message-rates; "optional KIND" when the value may be left out.
 _hitl_value() {
     case "$1|$2" in
-        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'campaign|--dialect'|'campaign run|--dialect'|'campaign history|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
-        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'campaign|--config'|'campaign run|--config'|'campaign history|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
+        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
+        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
         'inspect|--bind') echo 'text' ;;
         'inspect|--local-port') echo 'text' ;;
         'inspect|--record') echo 'file *.tlog' ;;
@@ -183,9 +179,6 @@ _hitl_value() {
         'doctor|--hil-port') echo 'text' ;;
         'doctor|--vio-port') echo 'text' ;;
         'doctor|--adb-serial') echo 'text' ;;
-        'doctor|--px4') echo 'text' ;;
-        'doctor|--px4-param') echo 'text' ;;
-        'doctor|--vehicle') echo 'file *.json' ;;
         'doctor|--listen') echo 'text' ;;
         'board install|--adb-serial') echo 'text' ;;
         'board install|--packages') echo 'text' ;;
@@ -228,15 +221,9 @@ _hitl_value() {
         'demo|--record') echo 'file *.tlog' ;;
         'demo|--report') echo 'file *.html' ;;
         'demo|--px4') echo 'text' ;;
-        'campaign run|-j'|'campaign run|--jobs') echo 'text' ;;
-        'campaign run|--out') echo 'text' ;;
-        'campaign run|--only') echo 'text' ;;
-        'campaign run|--history') echo 'file' ;;
-        'campaign run|--label') echo 'text' ;;
-        'campaign history|--history') echo 'file' ;;
-        'campaign history|--last') echo 'text' ;;
         'report|-o'|'report|--output') echo 'file *.html' ;;
         'report|--ulog') echo 'file' ;;
+        'report|--dygraphs') echo 'text' ;;
     esac
 }
 
@@ -247,7 +234,6 @@ _hitl_positional() {
         'params export|'0) echo 'file' ;;
         'params load|'0) echo 'file' ;;
         'fly trajectory|'0) echo 'file' ;;
-        'campaign run|'0) echo 'file *.toml' ;;
         'report|'0) echo 'file *.tlog' ;;
         'completion|'0) echo 'choice bash zsh fish' ;;
     esac

@@ -13,6 +13,8 @@ packages=(
   libtomlplusplus-dev libsqlite3-dev  # hitl campaign: its TOML files and its history database (docs/campaigns.md)
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
+  # hitl report's interactive page inlines Debian's dygraphs (docs/report.md); without it the static page
+  libjs-dygraphs
 )
 if [ "${1:-}" = "--test" ]; then
   # Tests also use: clang + its sanitizer/fuzzer runtime (libFuzzer), node + npm (node-mavlink conformance),

@@ -17,6 +17,7 @@
 #include "engine/mavlink/statustext.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/mavlink/tlog_timeline.h"
+#include "engine/report/fault_windows.h"
 #include "engine/telemetry/px4_mode.h"
 
 namespace hitl::report {
@@ -111,6 +112,46 @@ void add_attitude(AttitudeTrack& track, double t_s, double roll_rad, double pitc
   track.yaw_deg.push_back(yaw_rad * kRadToDeg);
 }
 
+void add_velocity(VelocityTrack& track, double t_s, const Eigen::Vector3d& v_NED_m_s) {
+  track.t_s.push_back(t_s);
+  track.north_m_s.push_back(v_NED_m_s.x());
+  track.east_m_s.push_back(v_NED_m_s.y());
+  track.down_m_s.push_back(v_NED_m_s.z());
+}
+
+void add_rates(RateTrack& track, double t_s, double roll_rad_s, double pitch_rad_s, double yaw_rad_s) {
+  track.t_s.push_back(t_s);
+  track.roll_deg_s.push_back(roll_rad_s * kRadToDeg);
+  track.pitch_deg_s.push_back(pitch_rad_s * kRadToDeg);
+  track.yaw_deg_s.push_back(yaw_rad_s * kRadToDeg);
+}
+
+void add(Series& s, double t_s, double v);
+
+void add_sticks(Sticks& sticks, double t_s, double roll, double pitch, double throttle, double yaw) {
+  add(sticks.roll, t_s, roll);
+  add(sticks.pitch, t_s, pitch);
+  add(sticks.throttle, t_s, throttle);
+  add(sticks.yaw, t_s, yaw);
+}
+
+/// POSITION_TARGET_LOCAL_NED's type_mask bits 3-5: vx, vy, vz ignored; ATTITUDE_TARGET's bits 0-2:
+/// the body rates ignored.
+constexpr uint16_t kPositionTargetIgnoreVelocity = 0b111000;
+constexpr uint8_t kAttitudeTargetIgnoreRates = 0b111;
+void add_gps(GpsQuality& q, double t_s, uint8_t fix_type, uint8_t satellites, uint16_t eph, uint16_t epv) {
+  add(q.fix_type, t_s, fix_type);
+  if (satellites != UINT8_MAX) add(q.satellites, t_s, satellites);
+  if (eph != UINT16_MAX) add(q.eph, t_s, eph / 100.0);
+  if (epv != UINT16_MAX) add(q.epv, t_s, epv / 100.0);
+}
+
+/// HIL_SENSOR's fields_updated bits 0-5: xacc, yacc, zacc, xgyro, ygyro, zgyro.
+constexpr uint32_t kHilSensorAccelAndGyro = 0b111111;
+/// RC_CHANNELS_OVERRIDE: a channel of 0 or UINT16_MAX is not overridden.
+bool rc_valid(uint16_t us) { return us >= 800 && us <= 2200; }
+double rc_stick(uint16_t us) { return (static_cast<double>(us) - 1500.0) / 500.0; }
+
 void add(Series& s, double t_s, double v) {
   s.t_s.push_back(t_s);
   s.value.push_back(v);
@@ -173,7 +214,9 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   Arrivals vio{"ODOMETRY (VIO)", kVioRate_hz, {}, {}};
   Arrivals actuators{"HIL_ACTUATOR_CONTROLS", std::nullopt, {}, {}};
   Track vehicle_setpoint;
+  VelocityTrack vehicle_setpoint_velocity;
   std::map<uint8_t, VehicleState> vehicles;
+  std::optional<uint8_t> mode_vehicle;  // whose modes are drawn as bands: the first vehicle heard
   uint64_t events_dropped = 0;
   auto event = [&](double t_s, Severity severity, std::string source, std::string text) {
     if (log.events.size() >= limits.max_events) {
@@ -212,7 +255,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     }
     const uint64_t wall_us = r.time_unix_us;
     const double t_s = clock.t_s(wall_us);
-    if (!first_wall_us) first_wall_us = wall_us, first_t_s = t_s;
+    if (!first_wall_us) first_wall_us = wall_us, first_t_s = t_s, log.first_unix_us = wall_us;
     last_wall_us = wall_us;
     last_t_s = t_s;
     parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
@@ -221,12 +264,31 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
       const bool from_sim = f.sysid == sim_id;
       const bool from_pilot = f.compid == mavlink::kCompIdPathPlanner;  // pilot_record.h: under sim -t or fly trajectory
       switch (f.msgid) {
-        case msg::HilSensor::kId:
-          if (from_sim) arrive(sensor, t_s, wall_us);
+        case msg::HilSensor::kId: {
+          if (!from_sim) break;
+          arrive(sensor, t_s, wall_us);
+          const auto h = f.as<msg::HilSensor>();
+          if ((h.fields_updated & kHilSensorAccelAndGyro) != kHilSensorAccelAndGyro) break;
+          log.imu.t_s.push_back(t_s);
+          const std::array<float, 3> accel = {h.xacc, h.yacc, h.zacc}, gyro = {h.xgyro, h.ygyro, h.zgyro};
+          for (std::size_t k = 0; k < 3; ++k) {
+            log.imu.accel_FRD_m_s2[k].push_back(accel[k]);
+            log.imu.gyro_FRD_deg_s[k].push_back(gyro[k] * kRadToDeg);
+          }
           break;
-        case msg::HilGps::kId:
-          if (from_sim) arrive(gps, t_s, wall_us);
+        }
+        case msg::HilGps::kId: {
+          if (!from_sim) break;
+          arrive(gps, t_s, wall_us);
+          const auto g = f.as<msg::HilGps>();
+          add_gps(log.sent_gps, t_s, g.fix_type, g.satellites_visible, g.eph, g.epv);
           break;
+        }
+        case msg::GpsRawInt::kId: {
+          const auto g = f.as<msg::GpsRawInt>();
+          if (!from_sim) add_gps(log.vehicle_gps, t_s, g.fix_type, g.satellites_visible, g.eph, g.epv);
+          break;
+        }
         case msg::Odometry::kId: {
           const auto o = f.as<msg::Odometry>();
           if (from_sim && f.compid == kVioComponentId) arrive(vio, t_s, wall_us);
@@ -236,6 +298,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
             const Eigen::Quaterniond q(o.q[0], o.q[1], o.q[2], o.q[3]);
             const auto e = frames::euler_from(q);
             add_attitude(log.truth_attitude, t_s, e.roll_rad, e.pitch_rad, e.yaw_rad);
+            add_velocity(log.truth_velocity, t_s, q.normalized() * Eigen::Vector3d(o.vx, o.vy, o.vz));  // v_NED = R_FRD_to_NED v_FRD
+            add_rates(log.truth_rates, t_s, o.rollspeed, o.pitchspeed, o.yawspeed);
           }
           break;
         }
@@ -243,6 +307,25 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           const auto sp = f.as<msg::PositionTargetLocalNed>();
           if (from_pilot && from_sim) setpoints_on_truth.push_back(log.setpoint.size());
           add_point(from_pilot ? log.setpoint : vehicle_setpoint, t_s, sp.x, sp.y, sp.z);
+          if ((sp.type_mask & kPositionTargetIgnoreVelocity) == 0)
+            add_velocity(from_pilot ? log.setpoint_velocity : vehicle_setpoint_velocity, t_s, Eigen::Vector3d(sp.vx, sp.vy, sp.vz));
+          break;
+        }
+        case msg::AttitudeTarget::kId: {
+          const auto a = f.as<msg::AttitudeTarget>();
+          if (!from_sim && (a.type_mask & kAttitudeTargetIgnoreRates) == 0)
+            add_rates(log.rate_setpoint, t_s, a.body_roll_rate, a.body_pitch_rate, a.body_yaw_rate);
+          break;
+        }
+        case msg::ManualControl::kId: {
+          const auto m = f.as<msg::ManualControl>();
+          add_sticks(log.manual_control, t_s, m.y / 1000.0, m.x / 1000.0, m.z / 1000.0, m.r / 1000.0);
+          break;
+        }
+        case msg::RcChannelsOverride::kId: {
+          const auto c = f.as<msg::RcChannelsOverride>();
+          if (rc_valid(c.chan1_raw) && rc_valid(c.chan2_raw) && rc_valid(c.chan3_raw) && rc_valid(c.chan4_raw))
+            add_sticks(log.rc_override, t_s, rc_stick(c.chan1_raw), rc_stick(c.chan2_raw), rc_stick(c.chan3_raw), rc_stick(c.chan4_raw));
           break;
         }
         case msg::NamedValueFloat::kId: {
@@ -270,12 +353,14 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           if (!from_sim) {
             const auto p = f.as<msg::LocalPositionNed>();
             add_point(log.estimate, t_s, p.x, p.y, p.z);
+            add_velocity(log.estimate_velocity, t_s, Eigen::Vector3d(p.vx, p.vy, p.vz));
           }
           break;
         case msg::Attitude::kId:
           if (!from_sim) {
             const auto a = f.as<msg::Attitude>();
             add_attitude(log.estimate_attitude, t_s, a.roll, a.pitch, a.yaw);
+            add_rates(log.estimate_rates, t_s, a.rollspeed, a.pitchspeed, a.yawspeed);
           }
           break;
         case msg::HilActuatorControls::kId: {
@@ -305,6 +390,11 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           const auto mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
           if (v.armed != armed) event(t_s, Severity::Info, source_name(f, sim_id), armed ? "armed" : "disarmed");
           if (v.mode != mode) event(t_s, Severity::Info, source_name(f, sim_id), "mode " + mode);
+          if (!mode_vehicle) mode_vehicle = f.sysid, log.vehicle = VehicleInfo{f.sysid, hb.type, hb.autopilot};
+          if (*mode_vehicle == f.sysid && v.mode != mode) {
+            if (!log.modes.empty()) log.modes.back().end_s = t_s;
+            log.modes.push_back({mode, t_s, t_s});
+          }
           v.armed = armed;
           v.mode = mode;
           break;
@@ -329,6 +419,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   log.parse_errors = parser.stats().crc_errors + parser.stats().unknown_ids;
   log.start_s = *first_t_s;
   log.duration_s = *last_t_s - *first_t_s;
+  if (!log.modes.empty()) log.modes.back().end_s = *last_t_s;
+  log.faults = fault_windows(log.events, log.simulated_time);
   log.wall_duration_s = std::max(0.0, static_cast<double>(*last_wall_us) - static_cast<double>(*first_wall_us)) * 1e-6;
   // One height datum, home (docs/sim.md): the truth and the setpoints flown on it, down by the
   // truth's height at rest; the vehicle's own frames are from home already.
@@ -336,7 +428,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     for (double& d : log.truth.down_m) d -= *log.truth_rest_down_m;
     for (std::size_t i : setpoints_on_truth) log.setpoint.down_m[i] -= *log.truth_rest_down_m;
   }
-  if (log.setpoint.size() == 0) log.setpoint = std::move(vehicle_setpoint);
+  if (log.setpoint.size() == 0) log.setpoint = std::move(vehicle_setpoint), log.setpoint_velocity = std::move(vehicle_setpoint_velocity);
   if (log.tracking_error_m.size() > 0) {
     TrackingSummary s;
     s.samples = log.tracking_error_m.size();

@@ -37,6 +37,40 @@ struct AttitudeTrack {
   std::size_t size() const { return t_s.size(); }
 };
 
+struct VelocityTrack {
+  std::vector<double> t_s, north_m_s, east_m_s, down_m_s;
+  std::size_t size() const { return t_s.size(); }
+};
+
+/// Body rates (FRD: roll, pitch, yaw) in degrees per second.
+struct RateTrack {
+  std::vector<double> t_s, roll_deg_s, pitch_deg_s, yaw_deg_s;
+  std::size_t size() const { return t_s.size(); }
+};
+
+/// The pilot's sticks, each -1..1: MANUAL_CONTROL's x (pitch), y (roll), z (thrust), r (yaw) / 1000,
+/// or RC_CHANNELS_OVERRIDE's channels 1 to 4 (roll, pitch, throttle, yaw) as (us - 1500) / 500.
+struct Sticks {
+  Series roll, pitch, throttle, yaw;
+  std::size_t size() const { return roll.size(); }
+};
+
+/// The simulator's IMU as it sent it (HIL_SENSOR): specific force and body rates, FRD.
+struct ImuTrack {
+  std::vector<double> t_s;
+  std::array<std::vector<double>, 3> accel_FRD_m_s2;  ///< xacc, yacc, zacc
+  std::array<std::vector<double>, 3> gyro_FRD_deg_s;  ///< xgyro, ygyro, zgyro
+  std::size_t size() const { return t_s.size(); }
+};
+
+/// A GPS's quality as a message said it: fix type (0-1 none, 2 2D, 3 3D, ...), satellites visible,
+/// eph and epv over 100 (HDOP and VDOP by MAVLink's words; metres as PX4 reads HIL_GPS); an unknown
+/// value (UINT16_MAX, UINT8_MAX) is left out.
+struct GpsQuality {
+  Series fix_type, satellites, eph, epv;
+  std::size_t size() const { return fix_type.size(); }
+};
+
 /// One data path's arrivals in 1 s windows of the log's time: rate per second of that time and the
 /// standard deviation of the wall-clock inter-arrival time.
 struct PathTiming {
@@ -53,6 +87,23 @@ struct LogEvent {
   Severity severity = Severity::Info;
   std::string source;  ///< "simulator", "pilot", "vehicle 1"
   std::string text;
+};
+
+/// A fault the simulator ran (fault_windows.h): from its start to its end, with its arguments.
+struct FaultWindow {
+  std::string name;                  ///< "imu-vibration"
+  std::string args;                  ///< "8,90" as the simulator said them ("" : none)
+  double start_s = 0;
+  std::optional<double> end_s;       ///< nullopt: still active when the log ended
+  std::optional<double> duration_s;  ///< as its start said it ("started (5 s)")
+  std::string label() const { return args.empty() ? name : name + ":" + args; }
+};
+
+/// The vehicle's flight mode (PX4's name, from its HEARTBEAT) from one change to the next.
+struct ModeSpan {
+  std::string mode;  ///< "Position", "Land", ...
+  double start_s = 0;
+  double end_s = 0;  ///< the next change, or the log's last record
 };
 
 struct TrackingSummary {
@@ -79,6 +130,8 @@ struct Px4Estimate {
   std::string version;           ///< PX4's "v1.16.0" (ver_sw_release), "" when the log has none
   Track position;                ///< vehicle_local_position x, y, z while xy_valid and z_valid
   AttitudeTrack attitude;        ///< vehicle_attitude q
+  RateTrack rate_setpoint;       ///< vehicle_rates_setpoint roll, pitch, yaw (its rate controller's input), when logged
+  RateTrack rates;               ///< vehicle_angular_velocity xyz (what its rate controller saw), when logged
   Track minus_truth;             ///< position minus the truth (interpolated at each time), where both are
   std::array<double, 3> mean_offset_NED_m{};  ///< the mean of minus_truth
   double rms_m = 0;              ///< of minus_truth's length
@@ -89,8 +142,18 @@ struct Px4Estimate {
   std::vector<std::string> notes;  ///< the reader's notes and what was not drawn, in words
 };
 
+/// The vehicle as its first HEARTBEAT said it.
+struct VehicleInfo {
+  uint8_t sysid = 0;
+  uint8_t type = 0;       ///< MAV_TYPE (2: quadrotor)
+  uint8_t autopilot = 0;  ///< MAV_AUTOPILOT (12: PX4)
+};
+
 struct FlightLog {
   std::string path;
+  std::optional<uint64_t> first_unix_us;  ///< the first record's tlog timestamp (UNIX time, us)
+  std::optional<VehicleInfo> vehicle;     ///< the first vehicle heard
+  std::string generator;                  ///< what draws the page ("hitl 0.1.0"; set by write_report)
   uint64_t records = 0;         ///< tlog records read
   uint64_t frames = 0;          ///< MAVLink frames in them
   uint64_t skipped_bytes = 0;   ///< corruption the reader stepped over
@@ -112,12 +175,25 @@ struct FlightLog {
   std::optional<double> truth_rest_down_m;
   AttitudeTrack truth_attitude;
   AttitudeTrack estimate_attitude;  ///< ATTITUDE
+  VelocityTrack setpoint_velocity;  ///< POSITION_TARGET_LOCAL_NED vx, vy, vz of the same sender as `setpoint`, where its type_mask gives them
+  VelocityTrack truth_velocity;     ///< the truth ODOMETRY's body velocity turned to NED by its quaternion
+  VelocityTrack estimate_velocity;  ///< LOCAL_POSITION_NED vx, vy, vz
+  RateTrack rate_setpoint;          ///< the vehicle's ATTITUDE_TARGET body rates (where its type_mask gives them)
+  RateTrack truth_rates;            ///< the truth ODOMETRY's rollspeed, pitchspeed, yawspeed
+  RateTrack estimate_rates;         ///< ATTITUDE rollspeed, pitchspeed, yawspeed
+  Sticks manual_control;            ///< MANUAL_CONTROL (any sender)
+  Sticks rc_override;               ///< RC_CHANNELS_OVERRIDE (any sender)
+  GpsQuality sent_gps;              ///< HIL_GPS from the simulator (what the flight stack was given)
+  GpsQuality vehicle_gps;           ///< GPS_RAW_INT from the vehicle (what it made of it)
+  ImuTrack imu;                     ///< HIL_SENSOR from the simulator whose fields_updated has the accelerometer and gyro
   Series tracking_error_m;      ///< NAMED_VALUE_FLOAT trk_err from the pilot: what the tracking RMS/max are of
   std::optional<TrackingSummary> tracking;
   std::array<Series, 4> motors;  ///< HIL_ACTUATOR_CONTROLS controls[0..3]
   std::array<Series, 6> ekf_ratios;  ///< ESTIMATOR_STATUS, in kEkfRatioNames' order
   std::vector<PathTiming> paths;
   std::vector<LogEvent> events;
+  std::vector<FaultWindow> faults;        ///< the simulator's fault windows, in start order
+  std::vector<ModeSpan> modes;            ///< the first vehicle's flight modes
   std::optional<int64_t> late_ticks;      ///< the session's last "sim_late"
   std::optional<bool> lockstep;           ///< the session's "sim_lockst"
   LoopLatencySeries loop_latency;

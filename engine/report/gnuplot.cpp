@@ -54,7 +54,7 @@ const char* marker_color(Severity s) {
 
 }  // namespace
 
-std::string gnuplot_script(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers, const std::string& dir,
+std::string gnuplot_script(const std::vector<Plot>& plots, const TimeMarks& marks, const std::string& dir,
                            const GnuplotOptions& options) {
   std::ostringstream s;
   s.precision(9);
@@ -78,8 +78,29 @@ std::string gnuplot_script(const std::vector<Plot>& plots, const std::vector<Eve
     s << "set grid\nset key outside right top vertical\nset border 3\nset tics nomirror\n";
     if (plot.equal_axes) s << "set size ratio -1\n";
     if (plot.time_axis && plot.x_max > plot.x_min) s << "set xrange [" << plot.x_min << ":" << plot.x_max << "]\n";
+    if (plot.time_axis) {
+      static const char* const kModeTints[] = {"#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#bcbd22", "#17becf", "#e377c2", "#7f7f7f"};
+      std::vector<std::string> mode_names;
+      int object = 1;
+      for (const auto& m : marks.modes) {
+        auto at = std::find(mode_names.begin(), mode_names.end(), m.label);
+        if (at == mode_names.end()) at = mode_names.insert(mode_names.end(), m.label);
+        const auto tint = kModeTints[static_cast<std::size_t>(at - mode_names.begin()) % 8];
+        s << "set object " << object++ << " rect from first " << m.start_s << ", graph 0 to first " << m.end_s
+          << ", graph 1 behind fc rgb '" << tint << "' fs transparent solid 0.08 noborder\n";
+        if (m.end_s - m.start_s >= 0.04 * (plot.x_max - plot.x_min))  // a name only where it fits
+          s << "set label " << object << " " << quoted(m.label) << " at first " << m.start_s
+            << ", graph 0.03 left offset 0.3,0 tc rgb '#777777' font ',8' front\n";
+      }
+      for (const auto& f : marks.faults) {
+        s << "set object " << object++ << " rect from first " << f.start_s << ", graph 0 to first " << f.end_s
+          << ", graph 1 behind fc rgb '#d62728' fs transparent solid 0.13 noborder\n";
+        s << "set label " << object << " " << quoted(f.label) << " at first " << f.start_s
+          << ", graph 0.95 left offset 0.3,0 tc rgb '#b00000' font ',9' front\n";
+      }
+    }
     if (plot.time_axis)
-      for (const auto& m : markers)
+      for (const auto& m : marks.events)
         s << "set arrow from " << m.t_s << ", graph 0 to " << m.t_s << ", graph 1 nohead back lc rgb '" << marker_color(m.severity)
           << "' lw 0.8 dt 3\n";
     s << "plot ";
@@ -107,7 +128,7 @@ std::string last_line(const std::string& text) {
 
 }  // namespace
 
-Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers,
+Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, const TimeMarks& marks,
                                                const GnuplotOptions& options, std::vector<std::string>* failed) {
   const auto gnuplot = net::find_on_path("gnuplot");
   if (!gnuplot)
@@ -127,7 +148,7 @@ Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, c
   auto draw = [&](const std::vector<Plot>& some) -> Expected<std::pair<int, std::string>> {
     {
       std::ofstream script(script_path, std::ios::trunc);
-      script << gnuplot_script(some, markers, dir, options);
+      script << gnuplot_script(some, marks, dir, options);
       if (!script.flush()) return Error::failed("cannot write " + script_path);
     }
     auto ran = net::run_program(*gnuplot, {script_path}, options.timeout_ms);

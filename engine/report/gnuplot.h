@@ -18,15 +18,17 @@ struct GnuplotOptions {
   int timeout_ms = 120'000;
 };
 
-/// The gnuplot script that draws `plots` into `dir`/<id>.svg (public for tests).
-std::string gnuplot_script(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers, const std::string& dir,
+/// The gnuplot script that draws `plots` into `dir`/<id>.svg (public for tests); on each time axis
+/// `marks`: the fault windows shaded red and labelled, the flight modes tinted and named, the events
+/// as dotted lines.
+std::string gnuplot_script(const std::vector<Plot>& plots, const TimeMarks& marks, const std::string& dir,
                            const GnuplotOptions& options = {});
 
 /// Each plot's SVG text, in order. When gnuplot fails on the whole script (a damaged log's series),
 /// each plot is drawn on its own: one gnuplot cannot draw has an empty SVG and a line in `failed`
 /// ("altitude: all points y value undefined!"). An Error when gnuplot is not installed, cannot run,
 /// takes too long, or draws no plot at all.
-Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, const std::vector<EventMarker>& markers,
+Expected<std::vector<std::string>> render_svgs(const std::vector<Plot>& plots, const TimeMarks& marks,
                                                const GnuplotOptions& options = {}, std::vector<std::string>* failed = nullptr);
 
 }  // namespace hitl::report

@@ -78,7 +78,9 @@ Expected<Px4Estimate> read_px4_estimate(const std::string& ulog_path, const Flig
     return Error::input("PX4's ULog '" + ulog_path + "' cannot be placed on this recording's time: it has no simulator's clock "
                         "(HIL_SENSOR from a simulator)");
   auto u = ulog::read_ulog(ulog_path, {{"vehicle_local_position", {"x", "y", "z", "xy_valid", "z_valid"}, 0},
-                                       {"vehicle_attitude", {"q[0]", "q[1]", "q[2]", "q[3]"}, 0}});
+                                       {"vehicle_attitude", {"q[0]", "q[1]", "q[2]", "q[3]"}, 0},
+                                       {"vehicle_rates_setpoint", {"roll", "pitch", "yaw"}, 0},
+                                       {"vehicle_angular_velocity", {"xyz[0]", "xyz[1]", "xyz[2]"}, 0}});
   if (!u) return u.error();
   Px4Estimate px4;
   px4.path = ulog_path;
@@ -113,6 +115,19 @@ Expected<Px4Estimate> read_px4_estimate(const std::string& ulog_path, const Flig
     px4.attitude.roll_deg.push_back(e.roll_rad * kRadToDeg);
     px4.attitude.pitch_deg.push_back(e.pitch_rad * kRadToDeg);
     px4.attitude.yaw_deg.push_back(e.yaw_rad * kRadToDeg);
+  }
+  // The rate controller's input and what it saw, when PX4 logged them (its default logging does;
+  // their absence is no note: the rate plots say what they draw).
+  for (const auto& [series, track] : {std::pair{&u->series[2], &px4.rate_setpoint}, std::pair{&u->series[3], &px4.rates}}) {
+    if (!series->missing.empty()) continue;
+    for (std::size_t i = 0; i < series->size(); ++i) {
+      const double t_s = static_cast<double>(series->timestamp_us[i]) * 1e-6;
+      if (t_s < first_s || t_s > last_s) continue;
+      track->t_s.push_back(t_s);
+      track->roll_deg_s.push_back(series->values[0][i] * kRadToDeg);
+      track->pitch_deg_s.push_back(series->values[1][i] * kRadToDeg);
+      track->yaw_deg_s.push_back(series->values[2][i] * kRadToDeg);
+    }
   }
   if (pos.size() > 0 && outside == pos.size())
     return Error::input("PX4's ULog '" + ulog_path + "' is of another time: its vehicle_local_position runs from " +

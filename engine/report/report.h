@@ -7,14 +7,18 @@
 #include <vector>
 
 #include "base/common/expected.h"
+#include "engine/report/dygraphs.h"
 #include "engine/report/flight_log.h"
 
 namespace hitl::report {
 
-/// Which ULog of PX4 to merge (docs/report.md "PX4's ULog beside the truth").
+/// Which ULog of PX4 to merge (docs/report.md "PX4's ULog beside the truth") and which page.
 struct ReportOptions {
   std::string ulog_path;   ///< --ulog: this one ("" : look beside the recording when find_ulog)
   bool find_ulog = true;   ///< the newest FILE.px4/log/**.ulg beside FILE.tlog, when there is one
+  bool static_page = false;  ///< --static: gnuplot's SVGs, no script (else the interactive page, interactive.h)
+  std::string dygraphs_dir = kDebianDygraphsDir;  ///< --dygraphs: where libjs-dygraphs' files are
+  std::string generator;   ///< "hitl 0.1.0": said in the page's header ("" : not said)
 };
 
 struct ReportResult {
@@ -27,9 +31,13 @@ struct ReportResult {
   std::string ulog_path;               ///< PX4's ULog merged ("" : none)
   bool ulog_found = false;             ///< it was found beside the recording, not given
   std::optional<Px4Estimate> px4;      ///< what it gave (the offset against truth)
+  bool interactive = false;            ///< the interactive page was written (else the static one)
+  std::string static_because;          ///< why the static page was written when the interactive one was asked for ("" : it was not)
 };
 
-/// Reads `tlog_path` (and PX4's ULog as `options` say), draws it and writes the page to `html_path`.
+/// Reads `tlog_path` (and PX4's ULog as `options` say), draws it and writes the page to `html_path`:
+/// the interactive page unless `options.static_page`, or the static one, said in `static_because`,
+/// when dygraphs' files are missing.
 /// A ULog given that cannot be merged is an Error; one found beside the recording that cannot be is
 /// said in `missing` and left out.
 Expected<ReportResult> write_report(const std::string& tlog_path, const std::string& html_path, const ReportOptions& options = {});

@@ -1,6 +1,7 @@
-// hitl report through the real binary: the demo's report rendered in headless Chromium (not blank,
-// and each plot's SVG holds the series its figure claims, with as many points as it says, of as
-// many samples as the recording holds); a plain MAVLink peer's log (hitl target recorded by hitl
+// hitl report through the real binary: the demo's report rendered in headless Chromium (not blank;
+// its script runs without an error and zooming one time plot zooms them all), and each plot holds
+// the series its figure claims (the interactive page's data, the static page's SVG), with as many
+// points as it says, of as many samples as the recording holds; a plain MAVLink peer's log (hitl target recorded by hitl
 // inspect: no simulator, no pilot) gives a report of what it has and says what it lacks.
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <tuple>
 
 #include "base/contract/session_status.h"
 #include "base/mavlink/enums.h"
@@ -88,9 +90,23 @@ std::size_t coordinate_pairs(const std::string& svg) {
   return pairs;
 }
 
-/// Each figure's claims and what its SVG draws: figure id -> series in plot order.
+/// The interactive page's data (<script type="application/json" id="hitl-data">); null when none.
+nlohmann::json page_data(const std::string& html) {
+  const std::string open = "<script type=\"application/json\" id=\"hitl-data\">";
+  const auto at = html.find(open);
+  if (at == std::string::npos) return nullptr;
+  const auto start = at + open.size();
+  return nlohmann::json::parse(html.substr(start, html.find("</script>", start) - start));
+}
+
+/// Each figure's claims and what it draws (its SVG's paths; a time plot of the interactive page, the
+/// points of its series in the page's data): figure id -> series in plot order.
 std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& html) {
   std::map<std::string, std::vector<SeriesClaim>> out;
+  const auto page = page_data(html);
+  std::map<std::string, nlohmann::json> data_plots;
+  if (!page.is_null())
+    for (const auto& p : page["plots"]) data_plots[p["id"]] = p;
   const std::string open = "<figure id=\"plot-";
   for (std::size_t at = 0; (at = html.find(open, at)) != std::string::npos;) {
     const auto id_end = html.find('"', at + open.size());
@@ -104,7 +120,16 @@ std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& ht
     for (std::size_t k = 0; k < claims.size(); ++k) {
       SeriesClaim c{claims[k]["title"], claims[k]["points"], claims[k]["samples"], 0};
       const auto g = fig.find("<g id=\"gnuplot_plot_" + std::to_string(k + 1) + "\"");
-      if (g == std::string::npos) {
+      if (fig.find("class=\"time-plot\"") != std::string::npos) {
+        const auto& p = data_plots[id];
+        if (p.is_null() || k >= p["series"].size()) {
+          c.title = "(no data on the page) " + c.title;
+        } else {
+          if (p["series"][k]["title"] != c.title) c.title = "(another series in the data) " + c.title;
+          c.drawn = p["series"][k]["t"].size();
+          EXPECT_EQ(p["series"][k]["y"].size(), c.drawn) << id << " / " << c.title;
+        }
+      } else if (g == std::string::npos) {
         c.title = "(no group in the SVG) " + c.title;
       } else {
         const std::string group = group_at(fig, g);
@@ -120,7 +145,7 @@ std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& ht
 
 /// Counted straight from the recording with the codec, not with the report's reader.
 struct RecordingCounts {
-  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0;
+  std::size_t truth = 0, setpoint = 0, tracking = 0, estimate = 0, attitude = 0, actuators = 0, manual_control = 0, hil_sensor = 0, hil_gps = 0;
   std::size_t latency_p50 = 0, latency_p99 = 0, latency_max = 0;  ///< the session's status once something was answered (not -1)
 };
 
@@ -141,6 +166,9 @@ RecordingCounts count_recording(const std::string& path) {
       if (!sim && f.is<msg::LocalPositionNed>()) ++c.estimate;
       if (!sim && f.is<msg::Attitude>()) ++c.attitude;
       if (!sim && f.is<msg::HilActuatorControls>()) ++c.actuators;
+      if (f.is<msg::ManualControl>()) ++c.manual_control;
+      if (sim && f.is<msg::HilSensor>()) ++c.hil_sensor;
+      if (sim && f.is<msg::HilGps>()) ++c.hil_gps;
       if (sim && f.is<msg::NamedValueInt>() && f.as<msg::NamedValueInt>().value >= 0) {
         const auto name = mavlink::text_of(f.as<msg::NamedValueInt>().name);
         c.latency_p50 += name == kStatusLoopLatencyP50Name ? 1 : 0;
@@ -175,6 +203,62 @@ std::string screenshot(const std::string& chromium, const std::string& html, con
   return "";
 }
 
+/// What the page's script did in headless Chromium: the page with a probe added (an error and
+/// console.error/warn catcher before every script, and after them `probe_js`, which fills `out`
+/// with what it finds, r being window.hitlReport), its DOM dumped; `out` as JSON (with "errors"),
+/// or {"failure": why}.
+nlohmann::json probe_in_chromium(const std::string& chromium, const std::string& html, const std::string& dir,
+                                 const std::string& probe_js) {
+  std::string page = read_file(html);
+  const std::string catcher = R"(<script>window.hitlErrors=[];window.addEventListener('error',function(e){hitlErrors.push('error: '+e.message)});
+['error','warn'].forEach(function(k){var f=console[k];console[k]=function(){hitlErrors.push(k+': '+Array.prototype.join.call(arguments,' '));f.apply(console,arguments)}});</script>)";
+  const std::string probe = "<script>(function(){var out={errors:hitlErrors};try{var r=window.hitlReport;" + probe_js +
+                            "}catch(e){out.errors.push('probe: '+e)}var pre=document.createElement('pre');pre.id='hitl-probe';"
+                            "pre.textContent=JSON.stringify(out);document.body.appendChild(pre)})();</script>";
+  const auto head = page.find("</head>"), body = page.rfind("</body>");
+  if (head == std::string::npos || body == std::string::npos) return {{"failure", "no </head> or </body> in the page"}};
+  page.insert(body, probe);
+  page.insert(head, catcher);
+  const std::string probed = dir + "/probed.html";
+  std::ofstream(probed) << page;
+  auto r = test::run_program({chromium, "--headless", "--no-sandbox", "--disable-gpu", "--user-data-dir=" + dir + "/profile",
+                              "--window-size=1200,3200", "--dump-dom", "file://" + probed},
+                             180s);
+  if (r.exit_code != 0) return {{"failure", "chromium exit " + std::to_string(r.exit_code) + ": " + r.err}};
+  const std::string open = "<pre id=\"hitl-probe\">";
+  const auto at = r.out.find(open);
+  if (at == std::string::npos) return {{"failure", "no probe in the dumped DOM (the page's script did not run to its end?)"}};
+  const auto start = at + open.size();
+  return nlohmann::json::parse(unescaped(r.out.substr(start, r.out.find("</pre>", start) - start)));
+}
+
+/// Moves the mouse over the middle of the third time plot and reads the time selected in each;
+/// zooms the second time plot to 2 s and reads every time plot's x range before and after; then
+/// clicks the first series' name in the first plot's legend.
+constexpr const char* kZoomProbe = R"(out.ids=r.ids;out.drawn_ms=r.drawn_ms;
+var h=r.graphs[2],ha=h.getArea(),hc=h.mouseEventElement_,hr=hc.getBoundingClientRect();
+hc.dispatchEvent(new MouseEvent('mousemove',{clientX:hr.left+ha.x+ha.w/2,clientY:hr.top+ha.y+ha.h/2,bubbles:true}));
+out.hover_t=h.getSelection()<0?null:h.getValue(h.getSelection(),0);
+out.selected=r.graphs.map(function(o){return o.getSelection()<0?null:o.getValue(o.getSelection(),0)});
+out.first_legend=document.querySelector('#plot-'+r.ids[0]+' .values').textContent;
+h.clearSelection();
+out.before=r.graphs.map(function(g){return g.xAxisRange()});
+var g=r.graphs[1],x=g.xAxisRange(),a=x[0]+0.4*(x[1]-x[0]);out.zoom=[a,a+2];g.updateOptions({dateWindow:out.zoom});
+out.after=r.graphs.map(function(g){return g.xAxisRange()});
+var item=document.querySelector('#plot-'+r.ids[0]+' .values [data-i="0"]');out.legend_item=item?item.textContent:null;
+if(item)item.click();out.visible_after_click=r.graphs[0].visibility()[0];
+out.canvases=document.querySelectorAll('figure.time-plot canvas').length;)";
+
+/// For each time plot and each fault window, the share of a column of the plot's pixels that are
+/// red-tinted (the window's band) at the window's middle ("inside") and at 5 s ("outside").
+constexpr const char* kShadeProbe = R"(var faults=JSON.parse(document.getElementById('hitl-data').textContent).faults;
+function reddish(g,t){var a=g.getArea(),c=g.hidden_,k=c.width/g.width_,ctx=c.getContext('2d'),n=0,all=0;
+var x=Math.round(g.toDomXCoord(t)*k);for(var y=a.y+2;y<a.y+a.h-2;y+=3){var p=ctx.getImageData(x,Math.round(y*k),1,1).data;
+all++;if(p[0]>p[1]+12&&p[0]>p[2]+12)n++;}return n/all;}
+out.ids=r.ids;out.faults=faults;
+out.inside=r.graphs.map(function(g){return faults.map(function(f){return reddish(g,(f.t0+f.t1)/2)})});
+out.outside=r.graphs.map(function(g){return reddish(g,5)});)";
+
 TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   const std::string dir = test::temp_dir();
   const std::string tlog = dir + "/demo.tlog", html = dir + "/demo.html";
@@ -184,51 +268,79 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   ASSERT_EQ(summary["type"], "summary") << demo.out;
   EXPECT_EQ(summary["report"]["path"], html);
   EXPECT_EQ(summary["recording"], tlog);
+  EXPECT_EQ(summary["report"]["interactive"], true) << summary["report"].dump();
   const std::string page = read_file(html);
-  for (const char* reach : {"<script", "src=\"http", "href=\"http", "href='http", "url(http", "@import"})
+  // One file that opens offline: its scripts and styles inline, nothing fetched.
+  for (const char* reach : {"<script src", "src=\"http", "href=\"http", "href='http", "url(http", "@import", "<link"})
     EXPECT_EQ(page.find(reach), std::string::npos) << "the page must not reach the network: " << reach;
+  EXPECT_NE(page.find("Dygraph.synchronize = synchronize"), std::string::npos) << "the synchronizer is inlined";
+
+  // The static page of the same recording: gnuplot's SVGs, no script.
+  auto static_run = test::run_hitl({"--json", "report", tlog, "--static", "-o", dir + "/static.html"});
+  ASSERT_EQ(static_run.exit_code, 0) << static_run.err;
+  EXPECT_EQ(test::last_json_line(static_run.out)["interactive"], false);
+  const std::string static_page = read_file(dir + "/static.html");
+  EXPECT_EQ(static_page.find("<script"), std::string::npos);
 
   // The summary table's tracking figures are the session's.
   const auto& trajectory = summary["trajectory"];
-  EXPECT_NE(page.find("RMS " + fixed2(trajectory["rms_m"]) + " m, max " + fixed2(trajectory["max_m"]) + " m (" +
-                      std::to_string(trajectory["samples"].get<uint64_t>()) + " samples)"),
-            std::string::npos)
-      << trajectory.dump();
+  const std::string tracking_row = "RMS " + fixed2(trajectory["rms_m"]) + " m, max " + fixed2(trajectory["max_m"]) + " m (" +
+                                   std::to_string(trajectory["samples"].get<uint64_t>()) + " samples)";
+  EXPECT_NE(page.find(tracking_row), std::string::npos) << trajectory.dump();
+  EXPECT_NE(static_page.find(tracking_row), std::string::npos) << trajectory.dump();
+  // The header: when it was recorded, the vehicle, what drew it.
+  for (const char* row : {"<tr><th>recorded</th><td>20", "<tr><th>vehicle</th><td>system 1: quadrotor, autopilot PX4",
+                          "<tr><th>drawn by</th><td>hitl "})
+    EXPECT_NE(page.find(row), std::string::npos) << row;
 
-  // Each plot's series: in its SVG, drawn with the points claimed, of the samples recorded.
+  // Each plot's series, on both pages: drawn with the points claimed, of the samples recorded.
   const auto counts = count_recording(tlog);
-  const auto figures = figures_of(page);
-  for (const char* id : {"top-view", "altitude", "tracking-error", "attitude-roll", "attitude-pitch", "attitude-yaw", "motors",
-                         "rates", "jitter", "loop-latency", "ekf"})
-    EXPECT_TRUE(figures.count(id)) << "no figure " << id;
-  for (const auto& [id, series] : figures) {
-    for (const auto& s : series) {
-      EXPECT_EQ(s.drawn, s.points) << id << " / " << s.title;
-      EXPECT_GT(s.points, 0u) << id << " / " << s.title;
-      EXPECT_LE(s.points, 2600u) << id << " / " << s.title;
-    }
-  }
-  auto samples = [&](const std::string& id, const std::string& title) -> std::size_t {
-    if (!figures.count(id)) return 0;
-    for (const auto& s : figures.at(id))
-      if (s.title == title) return s.samples;
-    return 0;
-  };
   EXPECT_GT(counts.truth, 1000u);
-  EXPECT_EQ(samples("top-view", "truth"), counts.truth);
-  EXPECT_EQ(samples("top-view", "setpoint"), counts.setpoint);
-  EXPECT_EQ(samples("top-view", "estimate"), counts.estimate);
-  EXPECT_EQ(samples("altitude", "truth"), counts.truth);
-  EXPECT_EQ(samples("tracking-error", "error against truth"), counts.tracking);
   EXPECT_EQ(counts.tracking, trajectory["samples"].get<std::size_t>());
-  EXPECT_EQ(samples("attitude-roll", "estimate"), counts.attitude);
-  EXPECT_EQ(samples("motors", "motor 1"), counts.actuators);
   // The demo is lockstep against hitl target: its loop latency is measured and recorded each second.
   EXPECT_GT(counts.latency_p99, 10u);
-  EXPECT_EQ(samples("loop-latency", "p50"), counts.latency_p50);
-  EXPECT_EQ(samples("loop-latency", "p99"), counts.latency_p99);
-  EXPECT_EQ(samples("loop-latency", "max"), counts.latency_max);
-  EXPECT_EQ(page.find("the loop latency"), std::string::npos) << "the demo's log has it";
+  for (const auto& [which, text, most_points] : {std::tuple{"interactive", &page, 10100u}, std::tuple{"static", &static_page, 2600u}}) {
+    SCOPED_TRACE(which);
+    const auto figures = figures_of(*text);
+    for (const char* id : {"top-view", "altitude", "tracking-error", "velocity-north", "velocity-east", "velocity-up", "attitude-roll",
+                           "attitude-pitch", "attitude-yaw", "rate-roll", "rate-pitch", "rate-yaw", "motors", "sticks", "imu-accel",
+                           "imu-gyro", "vibration", "gps", "rates", "jitter", "loop-latency", "ekf"})
+      EXPECT_TRUE(figures.count(id)) << "no figure " << id;
+    EXPECT_EQ(text->find("<figure id=\"lacks-"), std::string::npos) << "the demo's log has every plot's data";
+    // Each plot says which messages it comes from; the emulated board streams no ATTITUDE_TARGET.
+    EXPECT_NE(text->find("<span class=\"from\">from ATTITUDE_TARGET body rates (setpoint)"), std::string::npos);
+    EXPECT_NE(text->find("no rate setpoint: this log has no ATTITUDE_TARGET"), std::string::npos);
+    for (const auto& [id, series] : figures) {
+      for (const auto& s : series) {
+        EXPECT_EQ(s.drawn, s.points) << id << " / " << s.title;
+        EXPECT_GT(s.points, 0u) << id << " / " << s.title;
+        EXPECT_LE(s.points, most_points) << id << " / " << s.title;
+      }
+    }
+    auto samples = [&](const std::string& id, const std::string& title) -> std::size_t {
+      if (!figures.count(id)) return 0;
+      for (const auto& s : figures.at(id))
+        if (s.title == title) return s.samples;
+      return 0;
+    };
+    EXPECT_EQ(samples("top-view", "truth"), counts.truth);
+    EXPECT_EQ(samples("top-view", "setpoint"), counts.setpoint);
+    EXPECT_EQ(samples("top-view", "estimate"), counts.estimate);
+    EXPECT_EQ(samples("altitude", "truth"), counts.truth);
+    EXPECT_EQ(samples("tracking-error", "error against truth"), counts.tracking);
+    EXPECT_EQ(samples("attitude-roll", "estimate"), counts.attitude);
+    EXPECT_EQ(samples("motors", "motor 1"), counts.actuators);
+    EXPECT_EQ(samples("velocity-up", "estimate"), counts.estimate);
+    EXPECT_EQ(samples("rate-roll", "truth"), counts.truth);
+    EXPECT_EQ(samples("sticks", "throttle"), counts.manual_control);
+    EXPECT_EQ(samples("imu-gyro", "z (down)"), counts.hil_sensor);
+    EXPECT_EQ(samples("gps", "satellites (HIL_GPS)"), counts.hil_gps);
+    EXPECT_EQ(samples("vibration", "z (down)"), 257u) << "0 to 125 Hz in 512-sample segments";
+    EXPECT_EQ(samples("loop-latency", "p50"), counts.latency_p50);
+    EXPECT_EQ(samples("loop-latency", "p99"), counts.latency_p99);
+    EXPECT_EQ(samples("loop-latency", "max"), counts.latency_max);
+    EXPECT_EQ(text->find("the loop latency"), std::string::npos) << "the demo's log has it";
+  }
 
   // Chromium draws it, and what it draws is not a blank page.
   const std::string chromium = test::find_program("chromium");
@@ -248,6 +360,34 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   // A white 1200x3200 page compresses to a few KiB; the report's plots and tables to far more.
   EXPECT_GT(shot_bytes, 10 * blank_bytes) << shot << ": " << shot_bytes << " bytes, a blank page " << blank_bytes;
   std::cout << "screenshot: " << shot << " (" << shot_bytes << " bytes)\n";
+
+  // The page's script: no error; zoom one time plot and every time plot's x range follows.
+  const auto probe = probe_in_chromium(chromium, html, dir, kZoomProbe);
+  ASSERT_FALSE(probe.contains("failure")) << probe.dump();
+  EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
+  const auto data = page_data(page);
+  ASSERT_FALSE(data.is_null());
+  EXPECT_EQ(probe["ids"].size(), data["plots"].size()) << "a dygraph for every time plot";
+  EXPECT_GE(probe["ids"].size(), 10u);
+  EXPECT_GE(probe["canvases"].get<int>(), 2 * static_cast<int>(probe["ids"].size())) << "each plot drew its canvases";
+  const double zoom0 = probe["zoom"][0], zoom1 = probe["zoom"][1];
+  for (std::size_t i = 0; i < probe["after"].size(); ++i) {
+    EXPECT_NEAR(probe["after"][i][0].get<double>(), zoom0, 1e-6) << probe["ids"][i];
+    EXPECT_NEAR(probe["after"][i][1].get<double>(), zoom1, 1e-6) << probe["ids"][i];
+    EXPECT_GT(probe["before"][i][1].get<double>() - probe["before"][i][0].get<double>(), 10.0) << probe["ids"][i];
+  }
+  // Hovering one plot selects the nearest time in every other and shows the values there.
+  ASSERT_FALSE(probe["hover_t"].is_null()) << probe.dump().substr(0, 400);
+  for (std::size_t i = 0; i < probe["selected"].size(); ++i) {
+    ASSERT_FALSE(probe["selected"][i].is_null()) << probe["ids"][i];
+    EXPECT_NEAR(probe["selected"][i].get<double>(), probe["hover_t"].get<double>(), 0.6) << probe["ids"][i];  // the 1 s windows' middles
+  }
+  EXPECT_EQ(probe["first_legend"].get<std::string>().rfind("t = ", 0), 0u) << probe["first_legend"];
+  // The legend's series names toggle their series.
+  EXPECT_NE(probe["legend_item"], nullptr);
+  EXPECT_EQ(probe["visible_after_click"], false);
+  std::cout << "the page's script drew " << probe["ids"].size() << " time plots " << probe["drawn_ms"].get<double>()
+            << " ms after navigation started (" << page.size() / 1024 << " KiB page)\n";
 }
 
 TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults) {
@@ -259,8 +399,8 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
   ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
   test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
                      std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t",
-                     std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--fault", "gps-loss@15+3", "--report",
-                     dir + "/flight.html"});
+                     std::string(HITL_SOURCE_DIR) + "/docs/examples/square.json", "--fault", "gps-loss@15+3", "--fault",
+                     "imu-vibration:8,90@20+2", "--report", dir + "/flight.html"});
   EXPECT_EQ(sim.wait(150s), 0) << sim.err();
   board.signal(SIGINT);
   board.wait(20s);
@@ -275,6 +415,60 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
             std::string::npos);
   EXPECT_NE(page.find("<td>pilot</td><td>info</td><td>trajectory: HOLD (trajectory flown)</td>"), std::string::npos);
   EXPECT_EQ(page.find("What this log lacks</h2>\n<ul class=\"lacks\" id=\"lacks\">\n<li>ground truth"), std::string::npos);
+  // Each fault in the summary with its arguments named, and its window in the page's data.
+  EXPECT_NE(page.find("<tr><th>fault</th><td>gps-loss: from 15.00 s to 18.00 s (3.0 s)</td></tr>"), std::string::npos);
+  EXPECT_NE(page.find("<tr><th>fault</th><td>imu-vibration (amp_m_s2 8, freq_hz 90): from 20.00 s to 22.00 s (2.0 s)</td></tr>"),
+            std::string::npos);
+  const auto data = page_data(page);
+  ASSERT_FALSE(data.is_null());
+  EXPECT_EQ(data["faults"].dump(),
+            R"([{"label":"gps-loss","t0":15.0,"t1":18.0},{"label":"imu-vibration:8,90","t0":20.0,"t1":22.0}])");
+  bool position = false;
+  for (const auto& m : data["modes"]) position = position || m["mode"] == "Position";
+  EXPECT_TRUE(position) << data["modes"].dump();
+
+  // The vibration at 90 Hz is the accelerometer spectrum's peak (at 250 Hz no fold: below 125 Hz).
+  {
+    auto log = report::read_flight_log(dir + "/flight.tlog");
+    ASSERT_TRUE(log) << log.error().message;
+    for (const auto& p : report::plots_of(*log))
+      if (p.id == "vibration")
+        for (const auto& series : p.series) {
+          if (series.title == "z (down)") continue;  // the vibration is along x and y
+          std::size_t best = 0;
+          for (std::size_t k = 0; k < series.y.size(); ++k)
+            if (series.x[k] > 20 && series.y[k] > series.y[best]) best = k;
+          EXPECT_NEAR(series.x[best], 90, 1) << series.title;
+          EXPECT_GT(series.y[best], 1.0) << series.title << ": 8 m/s^2 for 2 s of the flight";
+        }
+  }
+  // On the static page each time plot has both windows labelled (gnuplot's labels).
+  auto static_run = test::run_hitl({"report", dir + "/flight.tlog", "--static", "-o", dir + "/static.html"});
+  ASSERT_EQ(static_run.exit_code, 0) << static_run.err;
+  const std::string static_page = read_file(dir + "/static.html");
+  auto count = [&](const std::string& needle) {
+    std::size_t n = 0;
+    for (std::size_t at = 0; (at = static_page.find(needle, at)) != std::string::npos; at += needle.size()) ++n;
+    return n;
+  };
+  const auto static_figures = figures_of(static_page);
+  ASSERT_TRUE(static_figures.count("top-view") && static_figures.count("vibration"));
+  const std::size_t time_plots = static_figures.size() - 2;  // all but the top view and the spectrum
+  EXPECT_GE(time_plots, 10u);
+  EXPECT_EQ(count(">gps-loss<"), time_plots);
+  EXPECT_EQ(count(">imu-vibration:8,90<"), time_plots);
+
+  // Both windows shaded behind every time plot, and nothing red at 5 s, before them.
+  const std::string chromium = test::find_program("chromium");
+  if (chromium.empty()) return;  // the demo's test says why
+  const auto probe = probe_in_chromium(chromium, dir + "/flight.html", dir, kShadeProbe);
+  ASSERT_FALSE(probe.contains("failure")) << probe.dump();
+  EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
+  ASSERT_EQ(probe["ids"].size(), data["plots"].size());
+  for (std::size_t i = 0; i < probe["ids"].size(); ++i) {
+    for (std::size_t k = 0; k < 2; ++k) EXPECT_GE(probe["inside"][i][k].get<double>(), 0.5) << probe["ids"][i] << " fault " << k;
+    EXPECT_LE(probe["outside"][i].get<double>(), 0.25) << probe["ids"][i];
+  }
 }
 
 /// The altitude plot's series `title` as drawn: time -> height.
@@ -420,6 +614,12 @@ TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
   EXPECT_TRUE(figures.count("attitude-roll")) << "the board's ATTITUDE is drawn";
   EXPECT_TRUE(figures.count("ekf")) << "the board's ESTIMATOR_STATUS is drawn";
   EXPECT_FALSE(figures.count("top-view"));
+  // A plot the log has no data for says so in its place, naming the messages it would come from.
+  EXPECT_NE(page.find("<figure id=\"lacks-top-view\" class=\"lacking\"><p><b>Top view: setpoint, truth and estimate</b>: this log "
+                      "has no POSITION_TARGET_LOCAL_NED (setpoint)"),
+            std::string::npos);
+  EXPECT_NE(page.find("<figure id=\"lacks-sticks\" class=\"lacking\"><p><b>Sticks</b>: this log has no MANUAL_CONTROL or RC_CHANNELS_OVERRIDE"),
+            std::string::npos);
   EXPECT_NE(page.find("the vehicle's position estimate (LOCAL_POSITION_NED)"), std::string::npos);
   EXPECT_FALSE(figures.count("tracking-error"));
   for (const auto& [id, series] : figures)
@@ -436,6 +636,23 @@ TEST(ReportE2E, APlainPeersLogGivesWhatItHasAndSaysWhatItLacks) {
   EXPECT_EQ(s["type"], "summary");
   EXPECT_EQ(s["path"], dir + "/again.html");
   EXPECT_GT(s["lacks"].size(), 3u);
+  EXPECT_EQ(s["interactive"], true);
+  EXPECT_TRUE(s["static_because"].is_null());
+
+  // Without dygraphs' files: the static page, and the file that is missing named.
+  const std::string nowhere = dir + "/no-dygraphs";
+  auto fallback = test::run_hitl({"report", dir + "/plain.tlog", "--dygraphs", nowhere, "-o", dir + "/fallback.html"});
+  ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
+  EXPECT_NE(fallback.err.find("hitl report: " + nowhere + "/dygraph.min.js is missing (Debian/Ubuntu: apt-get install libjs-dygraphs)"),
+            std::string::npos)
+      << fallback.err;
+  EXPECT_NE(fallback.err.find("wrote the static page"), std::string::npos) << fallback.err;
+  EXPECT_EQ(read_file(dir + "/fallback.html").find("<script"), std::string::npos);
+  auto fallback_json = test::run_hitl({"--json", "report", dir + "/plain.tlog", "--dygraphs", nowhere, "-o", dir + "/fallback.html"});
+  ASSERT_EQ(fallback_json.exit_code, 0) << fallback_json.err;
+  const auto f = test::last_json_line(fallback_json.out);
+  EXPECT_EQ(f["interactive"], false);
+  EXPECT_NE(f["static_because"].get<std::string>().find(nowhere + "/dygraph.min.js is missing"), std::string::npos) << f.dump();
 }
 
 TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed) {
@@ -446,10 +663,15 @@ TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed)
   // PX4's estimate at 2.5 m from 1 s to 5 s of the simulator's clock, 50 Hz.
   test::ULogWriter w;
   w.format("vehicle_local_position:uint64_t timestamp;float x;float y;float z;bool xy_valid;bool z_valid;");
+  w.format("vehicle_rates_setpoint:uint64_t timestamp;float roll;float pitch;float yaw;");
   w.subscribe(0, "vehicle_local_position");
-  for (uint64_t t_us = 1'000'000; t_us <= 5'000'000; t_us += 20'000)
+  w.subscribe(1, "vehicle_rates_setpoint");
+  for (uint64_t t_us = 1'000'000; t_us <= 5'000'000; t_us += 20'000) {
     w.data(0, test::ULogWriter::raw(t_us) + test::ULogWriter::raw(0.0F) + test::ULogWriter::raw(0.0F) +
                   test::ULogWriter::raw(-2.5F) + std::string("\1\1", 2));
+    // PX4's rate controller's input: 0.5 rad/s of roll (28.6 deg/s).
+    w.data(1, test::ULogWriter::raw(t_us) + test::ULogWriter::raw(0.5F) + test::ULogWriter::raw(0.0F) + test::ULogWriter::raw(0.0F));
+  }
   std::ofstream(dir + "/px4.ulg", std::ios::binary) << w.text();
 
   auto given = test::run_hitl({"--json", "report", tlog, "--ulog", dir + "/px4.ulg", "-o", dir + "/given.html"});
@@ -461,6 +683,19 @@ TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed)
   const std::string page = read_file(dir + "/given.html");
   for (const char* id : {"px4-altitude", "px4-offset"})
     EXPECT_NE(page.find(std::string("<figure id=\"plot-") + id + "\""), std::string::npos) << id;
+  // PX4's rate setpoint from its ULog in the rate tracking plot, in deg/s.
+  bool rate_setpoint = false;
+  const auto data = page_data(page);
+  for (const auto& p : data["plots"])
+    if (p["id"] == "rate-roll")
+      for (const auto& series : p["series"])
+        if (series["title"] == "PX4 setpoint (ULog)") {
+          rate_setpoint = true;
+          EXPECT_EQ(series["t"].size(), 201u);
+          EXPECT_NEAR(series["y"][0].get<double>(), 28.6479, 1e-3);
+        }
+  EXPECT_TRUE(rate_setpoint);
+  EXPECT_EQ(page.find("no rate setpoint"), std::string::npos) << "PX4's ULog has it";
 
   // Not given: the newest FILE.px4/log/**.ulg beside FILE.tlog, said on stderr.
   std::filesystem::create_directories(dir + "/s.px4/log/2026-11-29");

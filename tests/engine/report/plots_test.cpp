@@ -1,6 +1,8 @@
 // Thinning for drawing, and which plots a log gets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "engine/report/html.h"
 #include "engine/report/plots.h"
 
@@ -44,6 +46,35 @@ TEST(Plots, OnlyPlotsWithDataAndTheTrackingRmsInTheNote) {
   EXPECT_EQ(ids, (std::vector<std::string>{"top-view", "altitude", "tracking-error"}));
   EXPECT_EQ(plots[2].note.rfind("RMS 0.40 m, max 0.50 m over 2 samples", 0), 0u) << plots[2].note;
   EXPECT_EQ(plots[1].series[0].y, (std::vector<double>{0, 1}));  // altitude is -down
+}
+
+TEST(Plots, APlotWithoutDataIsKeptInItsPlaceSayingWhatTheLogLacks) {
+  FlightLog log;
+  log.duration_s = 2;
+  log.estimate_rates = {{0, 1}, {1, 2}, {0, 0}, {0, 0}};
+  PlotOptions options;
+  options.keep_lacking = true;
+  const auto plots = plots_of(log, options);
+  std::vector<std::string> ids;
+  for (const auto& p : plots) ids.push_back(p.id);
+  EXPECT_EQ(ids.front(), "top-view");
+  for (const auto& p : plots) {
+    EXPECT_FALSE(p.sources.empty()) << p.id;
+    if (p.id == "rate-roll") {
+      ASSERT_EQ(p.series.size(), 1u);
+      EXPECT_EQ(p.series[0].title, "estimate");
+      EXPECT_EQ(p.note.rfind("no rate setpoint: this log has no ATTITUDE_TARGET", 0), 0u) << p.note;
+      EXPECT_TRUE(p.lacks.empty());
+    }
+    if (p.id == "sticks") {
+      EXPECT_EQ(p.lacks, "this log has no MANUAL_CONTROL or RC_CHANNELS_OVERRIDE");
+    }
+    if (p.id == "motors") {
+      EXPECT_EQ(p.lacks, "this log has no HIL_ACTUATOR_CONTROLS controls[0..3] from the vehicle");
+    }
+  }
+  EXPECT_NE(std::find(ids.begin(), ids.end(), "sticks"), ids.end());
+  EXPECT_EQ(plots_of(log).size(), 3u) << "without keep_lacking: the three rate plots only";
 }
 
 TEST(Plots, HtmlEscapesText) { EXPECT_EQ(html_escaped("<a href=\"x\">&</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&lt;/a&gt;"); }
