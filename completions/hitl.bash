@@ -20,7 +20,7 @@ _hitl_commands() {
 _hitl_options() {
     case "$1" in
         '') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --allan --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --allan --spectrum --from --to --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
         'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --px4 --px4-param --px4-speed --px4-timeout --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise --rangefinder -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --report --version --json -v --verbose -q --quiet --dialect --config' ;;
         'target') echo '-h --help --bind --hil-port --gcs-port --vio-port --lockstep --duration --fault --version --json -v --verbose -q --quiet --dialect --config' ;;
         'replay') echo '-h --help -i --target-ip --hil-port --vio-port --local-port --bind --lockstep --lockstep-timeout --record --compare --tolerance --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -65,6 +65,8 @@ _hitl_value() {
         'inspect|--local-port') echo 'text' ;;
         'inspect|--record') echo 'file *.tlog' ;;
         'inspect|--show') echo 'messages' ;;
+        'inspect|--from') echo 'text' ;;
+        'inspect|--to') echo 'text' ;;
         'inspect|--duration') echo 'text' ;;
         'inspect|--count') echo 'text' ;;
         'inspect|--expect') echo 'message-rates' ;;
