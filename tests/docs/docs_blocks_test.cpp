@@ -195,6 +195,7 @@ TEST(DocsBlocks, ReadmeRunsAsWritten) { run_blocks("README.md"); }
 TEST(DocsBlocks, GuideRunsAsWritten) { run_blocks("docs/guide.md"); }
 TEST(DocsBlocks, ReplayRunsAsWritten) { run_blocks("docs/replay.md"); }
 TEST(DocsBlocks, FaultsRunAsWritten) { run_blocks("docs/faults.md"); }
+TEST(DocsBlocks, InspectRunsAsWritten) { run_blocks("docs/inspect.md"); }
 
 }  // namespace
 }  // namespace hitl
