@@ -1,5 +1,6 @@
 #include "engine/telemetry/imu_series.h"
 
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -66,7 +67,8 @@ Expected<ImuSeries> read_imu_series(const std::string& path, std::size_t max_sam
   if (frames == 0) return Error::input(name + " is not a .tlog: no MAVLink frame behind an 8-byte timestamp");
   if (s.samples == 0 && outside_window > 0) {
     char span[96];
-    std::snprintf(span, sizeof span, "%g s to %g s", window.from_s, window.to_s);
+    if (std::isfinite(window.to_s)) std::snprintf(span, sizeof span, "%g s to %g s", window.from_s, window.to_s);
+    else std::snprintf(span, sizeof span, "%g s to the end", window.from_s);
     return Error::input(name + " holds no HIL_SENSOR with accel and gyro from " + span + " of its time_usec (" +
                         std::to_string(outside_window) + " outside)");
   }

@@ -144,6 +144,13 @@ TEST(SpectrumE2E, AHoverShowsTheRotorLineAndItsBladePassAndPropDamageRaisesIt) {
   std::cerr << "accel z blade pass " << blade_pass << " m/s^2 at " << at_hz << " Hz (2 x rotors aliased: " << blade_pass_alias_hz
             << " Hz)\n";
   EXPECT_GT(blade_pass, 0.05) << j["sensors"]["accel"]["axes"]["z"]["peaks"].dump();
+  // A window with no samples, or less than one segment, is refused, saying so.
+  const auto beyond = test::run_hitl({"inspect", "--tlog", clean, "--spectrum", "--from", "100000"});
+  EXPECT_EQ(beyond.exit_code, 2);
+  EXPECT_NE(beyond.err.find("holds no HIL_SENSOR with accel and gyro from 100000 s to the end"), std::string::npos) << beyond.err;
+  const auto short_window = test::run_hitl({"inspect", "--tlog", clean, "--spectrum", "--from", "20", "--to", "20.5"});
+  EXPECT_EQ(short_window.exit_code, 2);
+  EXPECT_NE(short_window.err.find("the spectrum needs at least one segment of 250"), std::string::npos) << short_window.err;
   // Each is its axis's strongest line.
   EXPECT_NEAR(j["sensors"]["accel"]["axes"]["x"]["peaks"][0]["frequency_hz"].get<double>(), rotor_hz, 2.0);
   EXPECT_NEAR(j["sensors"]["accel"]["axes"]["z"]["peaks"][0]["frequency_hz"].get<double>(), blade_pass_alias_hz, 2.0);
