@@ -66,8 +66,8 @@ void print_text(const std::string& tlog, const telemetry::ImuSeries& series, con
 
 }  // namespace
 
-int run_inspect_allan(const GlobalOptions& global, const std::string& tlog) {
-  auto series = telemetry::read_imu_series(tlog);
+int run_inspect_allan(const GlobalOptions& global, const std::string& tlog, const telemetry::ImuWindow& window) {
+  auto series = telemetry::read_imu_series(tlog, telemetry::kMaxImuSeriesSamples, window);
   if (!series) return log_error("inspect", series.error());
   const auto axes = telemetry::imu_allan(*series);
   if (global.json) print_json_line(to_json(tlog, *series, axes));

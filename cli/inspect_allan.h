@@ -5,10 +5,11 @@
 #include <string>
 
 #include "cli/common_options.h"
+#include "engine/telemetry/imu_series.h"
 
 namespace hitl::cli {
 
-/// Reads `tlog`, prints the curves and their fits; returns the exit code (2: the file is refused).
-int run_inspect_allan(const GlobalOptions& global, const std::string& tlog);
+/// Reads `tlog` within `window`, prints the curves and their fits; returns the exit code (2: the file is refused).
+int run_inspect_allan(const GlobalOptions& global, const std::string& tlog, const telemetry::ImuWindow& window = {});
 
 }  // namespace hitl::cli

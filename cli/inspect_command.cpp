@@ -10,6 +10,7 @@
 #include "base/mavlink/enums.h"
 #include "cli/commands.h"
 #include "cli/inspect_allan.h"
+#include "cli/inspect_spectrum.h"
 #include "cli/number_check.h"
 #include "cli/traffic_table.h"
 #include "cli/value_types.h"
@@ -44,6 +45,9 @@ struct InspectOptions {
   bool require_signed = false;
   bool tui = false;  ///< --tui: the dashboard's data paths, messages and link panels (docs/tui.md)
   bool allan = false;  ///< --allan: the IMU's Allan deviation of a --tlog (inspect_allan.h)
+  bool spectrum = false;  ///< --spectrum: the IMU's amplitude spectrum of a --tlog (inspect_spectrum.h)
+  std::optional<double> from_s;  ///< --from, --to: the window of HIL_SENSOR time read by --allan, --spectrum
+  std::optional<double> to_s;
 };
 
 nlohmann::json frame_json(const mavlink::Frame& f, const std::string& source, int64_t t_ns) {
@@ -198,12 +202,21 @@ int run_inspect(const GlobalOptions& global, const InspectOptions& opt_in) {
   if (sources != 1) {
     return log_error(cmd, Error::usage("give exactly one source: --port P, --connect udp:HOST:PORT or --tlog FILE"));
   }
-  if (opt.allan) {
-    if (opt.tlog.empty()) return log_error(cmd, Error::usage("--allan reads a recording: give --tlog FILE"));
+  if (opt.allan && opt.spectrum) return log_error(cmd, Error::usage("give one of --allan and --spectrum"));
+  if ((opt.from_s || opt.to_s) && !opt.allan && !opt.spectrum)
+    return log_error(cmd, Error::usage("--from and --to choose the part of the recording --allan or --spectrum reads"));
+  if (opt.allan || opt.spectrum) {
+    const std::string flag = opt.allan ? "--allan" : "--spectrum";
+    if (opt.tlog.empty()) return log_error(cmd, Error::usage(flag + " reads a recording: give --tlog FILE"));
     if (opt.tui || opt.follow || !opt.show.empty() || !opt.expect.empty() || !opt.record.empty() || opt.duration_s > 0 || opt.count > 0)
-      return log_error(cmd, Error::usage("--allan reads the whole --tlog on its own: it does not go with --tui, --follow, --show, "
+      return log_error(cmd, Error::usage(flag + " reads the whole --tlog on its own: it does not go with --tui, --follow, --show, "
                                          "--expect, --record, --duration or --count"));
-    return run_inspect_allan(global, opt.tlog);
+    telemetry::ImuWindow window;
+    if (opt.from_s) window.from_s = *opt.from_s;
+    if (opt.to_s) window.to_s = *opt.to_s;
+    if (window.to_s <= window.from_s) return log_error(cmd, Error::usage("--to must be after --from"));
+    if (opt.allan) return run_inspect_allan(global, opt.tlog, window);
+    return run_inspect_spectrum(global, opt.tlog, window);
   }
   auto messages = load_messages(global);
   if (!messages) {
@@ -332,6 +345,7 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
       "  hitl inspect --connect udp:192.168.101.2:14558 --show HEARTBEAT,ATTITUDE\n"
       "  hitl inspect --tlog flight.tlog --json\n"
       "  hitl inspect --tlog rest.tlog --allan           # the IMU's noise density and bias instability\n"
+      "  hitl inspect --tlog hover.tlog --spectrum --from 10 --to 20   # the IMU's vibration lines in a hover\n"
       "Exit: 0 ok (every --expect met), 1 an expectation failed, 2 bad usage or the source cannot be opened.");
   auto* src = sub->add_option_group("Source", "exactly one of --port, --connect, --tlog");
   src->add_option("--port", opt->port, "Listen passively on this UDP port (e.g. 14570 for ODOMETRY)")
@@ -359,6 +373,15 @@ void add_inspect_command(CLI::App& app, GlobalOptions& options, RunState& state)
   sub->add_flag("--allan", opt->allan,
                 "With --tlog of a vehicle at rest: the overlapping Allan deviation of its IMU (HIL_SENSOR gyro and accel, "
                 "per axis), each curve's noise_density and bias_instability (docs/inspect.md)");
+  sub->add_flag("--spectrum", opt->spectrum,
+                "With --tlog: the amplitude spectrum of its IMU (HIL_SENSOR gyro and accel, per axis; Welch, Hann, 1 s "
+                "segments, 50 % overlap) and its strongest peaks: the rotors' vibration lines (docs/inspect.md)");
+  sub->add_option("--from", opt->from_s, "With --allan or --spectrum: read the IMU from this simulated time (HIL_SENSOR time_usec)")
+      ->check(non_negative_number())
+      ->type_name("S");
+  sub->add_option("--to", opt->to_s, "With --allan or --spectrum: read the IMU up to this simulated time (HIL_SENSOR time_usec)")
+      ->check(non_negative_number())
+      ->type_name("S");
   sub->add_option("--duration", opt->duration_s, "Stop after this many seconds (tlog: of log time)")
       ->check(positive_number())
       ->type_name("S");

@@ -20,7 +20,7 @@ _hitl_commands() {
 _hitl_options() {
     case "$1" in
         '') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --allan --spectrum --from --to --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
         'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --px4 --px4-param --px4-speed --px4-timeout --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise --rangefinder -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --report --version --json -v --verbose -q --quiet --dialect --config' ;;
         'target') echo '-h --help --bind --hil-port --gcs-port --vio-port --lockstep --duration --fault --version --json -v --verbose -q --quiet --dialect --config' ;;
         'replay') echo '-h --help -i --target-ip --hil-port --vio-port --local-port --bind --lockstep --lockstep-timeout --record --compare --tolerance --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -41,7 +41,7 @@ _hitl_options() {
         'fly land') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly hold') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
         'fly trajectory') echo '-h --help --rate --mode --record --report --connect -i --target-ip --port --local-port --session-port --sysid --timeout --wait --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'doctor') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --hil-port --vio-port --no-vio --adb --adb-serial --px4 --px4-param --vehicle --listen --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board install') echo '-h --help --adb --adb-serial --packages --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board start') echo '-h --help --adb --adb-serial --reset-params --wait --dry-run --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -50,7 +50,7 @@ _hitl_options() {
         'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --queue-ms --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
         'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --px4 --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'report') echo '-h --help -o --output --ulog --no-ulog --static --dygraphs --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'report') echo '-h --help -o --output --ulog --no-ulog --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
 }
@@ -65,6 +65,8 @@ _hitl_value() {
         'inspect|--local-port') echo 'text' ;;
         'inspect|--record') echo 'file *.tlog' ;;
         'inspect|--show') echo 'messages' ;;
+        'inspect|--from') echo 'text' ;;
+        'inspect|--to') echo 'text' ;;
         'inspect|--duration') echo 'text' ;;
         'inspect|--count') echo 'text' ;;
         'inspect|--expect') echo 'message-rates' ;;
@@ -179,6 +181,9 @@ _hitl_value() {
         'doctor|--hil-port') echo 'text' ;;
         'doctor|--vio-port') echo 'text' ;;
         'doctor|--adb-serial') echo 'text' ;;
+        'doctor|--px4') echo 'text' ;;
+        'doctor|--px4-param') echo 'text' ;;
+        'doctor|--vehicle') echo 'file *.json' ;;
         'doctor|--listen') echo 'text' ;;
         'board install|--adb-serial') echo 'text' ;;
         'board install|--packages') echo 'text' ;;
@@ -223,7 +228,6 @@ _hitl_value() {
         'demo|--px4') echo 'text' ;;
         'report|-o'|'report|--output') echo 'file *.html' ;;
         'report|--ulog') echo 'file' ;;
-        'report|--dygraphs') echo 'text' ;;
     esac
 }
 

@@ -1,5 +1,7 @@
 #include "engine/telemetry/imu_series.h"
 
+#include <cmath>
+#include <cstdio>
 #include <optional>
 
 #include "base/mavlink/frame_parser.h"
@@ -12,7 +14,7 @@ namespace hitl::telemetry {
 
 namespace msg = mavlink::msg;
 
-Expected<ImuSeries> read_imu_series(const std::string& path, std::size_t max_samples) {
+Expected<ImuSeries> read_imu_series(const std::string& path, std::size_t max_samples, const ImuWindow& window) {
   const std::string name = "'" + path + "'";
   auto reader = mavlink::TlogReader::open(path, mavlink::TlogInput::FileOrPipe);
   if (!reader) return reader.error().prefixed(name + ": ");
@@ -24,6 +26,7 @@ Expected<ImuSeries> read_imu_series(const std::string& path, std::size_t max_sam
   std::uint64_t last_usec = 0;
   std::uint64_t frames = 0;
   bool backwards = false;
+  std::uint64_t outside_window = 0;
   std::vector<std::uint64_t> times_usec;
   mavlink::TlogRecord record;
   while (reader->next(record)) {
@@ -38,6 +41,11 @@ Expected<ImuSeries> read_imu_series(const std::string& path, std::size_t max_sam
       const auto m = f.as<msg::HilSensor>();
       namespace hs = mavlink::hil_sensor;
       if (!hs::has_group(m.fields_updated, hs::kAccel) || !hs::has_group(m.fields_updated, hs::kGyro)) return;
+      const double t_s = static_cast<double>(m.time_usec) * 1e-6;
+      if (t_s < window.from_s || t_s > window.to_s) {
+        ++outside_window;
+        return;
+      }
       if (s.samples >= max_samples) {
         ++s.samples_beyond_cap;
         return;
@@ -57,6 +65,13 @@ Expected<ImuSeries> read_imu_series(const std::string& path, std::size_t max_sam
   }
   if (reader->stats().records == 0) return Error::input(name + " is empty");
   if (frames == 0) return Error::input(name + " is not a .tlog: no MAVLink frame behind an 8-byte timestamp");
+  if (s.samples == 0 && outside_window > 0) {
+    char span[96];
+    if (std::isfinite(window.to_s)) std::snprintf(span, sizeof span, "%g s to %g s", window.from_s, window.to_s);
+    else std::snprintf(span, sizeof span, "%g s to the end", window.from_s);
+    return Error::input(name + " holds no HIL_SENSOR with accel and gyro from " + span + " of its time_usec (" +
+                        std::to_string(outside_window) + " outside)");
+  }
   if (s.samples == 0)
     return Error::input(name + " holds no HIL_SENSOR with accel and gyro (" + std::to_string(frames) +
                         " frames): record one with hitl sim --record FILE.tlog");

@@ -2,12 +2,14 @@
 // the system that sent the first one (the simulator, in a `hitl sim --record` tlog; a board's or a
 // client's HIL_SENSOR from another system is left out), in FRD as sent. For `hitl inspect --allan`.
 // Bounded: at most `max_samples` are kept (six doubles each); the rest of the file is counted, not
-// kept. imu_allan(): the Allan deviation of each axis (allan_deviation.h).
+// kept. A window [from_s, to_s] of HIL_SENSOR's time_usec (the simulated time, s) keeps only the
+// samples in it. imu_allan(): the Allan deviation of each axis (allan_deviation.h).
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -30,9 +32,17 @@ struct ImuSeries {
   std::size_t gaps = 0;      ///< intervals over 1.5x the mean (a pause or a lost sample)
 };
 
-/// Reads `path` (a regular file or a pipe). Errors name the file: not a tlog, no IMU HIL_SENSOR,
-/// fewer than kAllanMinSamples samples, time that does not move forward.
-Expected<ImuSeries> read_imu_series(const std::string& path, std::size_t max_samples = kMaxImuSeriesSamples);
+/// The part of a recording read: HIL_SENSOR time_usec * 1e-6 within [from_s, to_s].
+struct ImuWindow {
+  double from_s = 0.0;
+  double to_s = std::numeric_limits<double>::infinity();
+  bool whole() const { return from_s <= 0.0 && to_s == std::numeric_limits<double>::infinity(); }
+};
+
+/// Reads `path` (a regular file or a pipe). Errors name the file: not a tlog, no IMU HIL_SENSOR
+/// (in the window), fewer than kAllanMinSamples samples, time that does not move forward.
+Expected<ImuSeries> read_imu_series(const std::string& path, std::size_t max_samples = kMaxImuSeriesSamples,
+                                    const ImuWindow& window = {});
 
 
 /// One axis of one sensor's Allan deviation.

@@ -1,4 +1,4 @@
-// The user's path is the tested path (issue 18): every shell block of README.md, docs/guide.md, docs/campaigns.md, docs/replay.md and docs/faults.md.
+// The user's path is the tested path (issue 18): every shell block of README.md, docs/guide.md, docs/campaigns.md, docs/replay.md, docs/faults.md and docs/inspect.md.
 // Each `hitl ... --option` in any block must exist in that command's --help (a renamed or removed
 // flag fails here). Each block that needs no board runs, in the order written, from a clean
 // directory (docs/ linked in), through the real binary (`hitl` on PATH is the built one), and must
@@ -136,7 +136,7 @@ std::vector<std::string> unknown_options(const std::vector<std::string>& cmd, He
 TEST(DocsBlocks, EveryDocumentedOptionExists) {
   HelpCache helps;
   int commands = 0;
-  for (const char* doc : {"README.md", "docs/guide.md", "docs/campaigns.md", "docs/replay.md", "docs/faults.md"}) {
+  for (const char* doc : {"README.md", "docs/guide.md", "docs/campaigns.md", "docs/replay.md", "docs/faults.md", "docs/inspect.md"}) {
     for (const auto& block : shell_blocks(doc)) {
       std::stringstream lines(block.text);
       int line_no = block.first_line - 1;
@@ -196,6 +196,7 @@ TEST(DocsBlocks, GuideRunsAsWritten) { run_blocks("docs/guide.md"); }
 TEST(DocsBlocks, ReplayRunsAsWritten) { run_blocks("docs/replay.md"); }
 TEST(DocsBlocks, FaultsRunAsWritten) { run_blocks("docs/faults.md"); }
 TEST(DocsBlocks, CampaignsRunAsWritten) { run_blocks("docs/campaigns.md"); }
+TEST(DocsBlocks, InspectRunsAsWritten) { run_blocks("docs/inspect.md"); }
 
 }  // namespace
 }  // namespace hitl
