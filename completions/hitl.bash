@@ -9,10 +9,11 @@ _hitl_messages='ACTUATOR_OUTPUT_STATUS ATTITUDE ATTITUDE_QUATERNION ATTITUDE_TAR
 # _hitl_commands PATH: the subcommands of a command path ('' is hitl, 'params' is hitl params).
 _hitl_commands() {
     case "$1" in
-        '') echo 'inspect sim target replay params arm disarm shell fly doctor board bridge demo report completion' ;;
+        '') echo 'inspect sim target replay params arm disarm shell fly doctor board bridge demo campaign report completion' ;;
         'params') echo 'show get set diff check export load reset' ;;
         'fly') echo 'takeoff land hold trajectory' ;;
         'board') echo 'install start stop status restore' ;;
+        'campaign') echo 'run history' ;;
     esac
 }
 
@@ -50,7 +51,10 @@ _hitl_options() {
         'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --queue-ms --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
         'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --px4 --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'report') echo '-h --help -o --output --ulog --no-ulog --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'campaign') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'campaign run') echo '-h --help -j --jobs --out --only --resume --rerun-failed --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'campaign history') echo '-h --help --history --last --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'report') echo '-h --help -o --output --ulog --no-ulog --static --dygraphs --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
 }
@@ -59,8 +63,8 @@ _hitl_options() {
 # file [PATTERN], dir, messages, message-rates; "optional KIND" when the value may be left out.
 _hitl_value() {
     case "$1|$2" in
-        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
-        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
+        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'campaign|--dialect'|'campaign run|--dialect'|'campaign history|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
+        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'campaign|--config'|'campaign run|--config'|'campaign history|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
         'inspect|--bind') echo 'text' ;;
         'inspect|--local-port') echo 'text' ;;
         'inspect|--record') echo 'file *.tlog' ;;
@@ -226,8 +230,16 @@ _hitl_value() {
         'demo|--record') echo 'file *.tlog' ;;
         'demo|--report') echo 'file *.html' ;;
         'demo|--px4') echo 'text' ;;
+        'campaign run|-j'|'campaign run|--jobs') echo 'text' ;;
+        'campaign run|--out') echo 'text' ;;
+        'campaign run|--only') echo 'text' ;;
+        'campaign run|--history') echo 'file' ;;
+        'campaign run|--label') echo 'text' ;;
+        'campaign history|--history') echo 'file' ;;
+        'campaign history|--last') echo 'text' ;;
         'report|-o'|'report|--output') echo 'file *.html' ;;
         'report|--ulog') echo 'file' ;;
+        'report|--dygraphs') echo 'text' ;;
     esac
 }
 
@@ -238,6 +250,7 @@ _hitl_positional() {
         'params export|'0) echo 'file' ;;
         'params load|'0) echo 'file' ;;
         'fly trajectory|'0) echo 'file' ;;
+        'campaign run|'0) echo 'file *.toml' ;;
         'report|'0) echo 'file *.tlog' ;;
         'completion|'0) echo 'choice bash zsh fish' ;;
     esac
