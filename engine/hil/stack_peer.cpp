@@ -108,9 +108,9 @@ std::string StackPeer::no_answer_cause(const std::string& peer, double warning_s
     return "no HIL_ACTUATOR_CONTROLS from PX4 SITL yet; still sending. Is PX4 started with a simulator "
            "airframe (e.g. 10016 none_iris)?";
   return "no HIL_ACTUATOR_CONTROLS from " + peer + " within " + std::to_string(static_cast<int>(warning_s)) +
-         " s of the first HIL_SENSOR; still sending. Likely causes: the board's HIL instance is locked to an "
-         "earlier session's port (restart PX4 on the board: voxl-px4-hitl start), HIL is not enabled (SYS_HITL must "
-         "be 1), or the wrong IP (-i)";
+         " s of the first HIL_SENSOR; still sending (with no board by design, as in the spec's Phase 1, nothing more "
+         "is wrong). With a board, likely causes: its HIL instance is locked to an earlier session's port (restart "
+         "PX4 on the board: voxl-px4-hitl start), HIL is not enabled (SYS_HITL must be 1), or the wrong IP (-i)";
 }
 
 std::string StackPeer::lost_text() const {
