@@ -4,10 +4,13 @@
 // campaign's summary.json and junit.xml).
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <mutex>
 #include <thread>
@@ -22,6 +25,7 @@
 #include "engine/campaign/flight_run.h"
 #include "engine/campaign/history.h"
 #include "engine/campaign/results.h"
+#include "engine/campaign/work_units.h"
 #include "engine/faults/fault_spec.h"
 
 namespace hitl::cli {
@@ -178,9 +182,53 @@ int run_one(const GlobalOptions& g, const campaign::Campaign& c, const std::vect
   return r->outcome == "passed" ? kExitOk : kExitFailed;
 }
 
-int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
+/// Where a campaign's results go and how this run is named: what run and collect both finish with.
+struct Finish {
+  std::string out_dir;
+  std::string history;  ///< empty: kept out of the history
+  std::string label;
+  std::string started_utc;
+  double wall_s = 0;
+  bool stopped = false;
+};
+
+/// summary.json and junit.xml into the folder, the run into the history, the summary line (or
+/// JSON); the exit code: 0 when every flight passed.
+int finish_campaign(const GlobalOptions& g, const campaign::Campaign& c, const std::vector<campaign::Flight>& flights,
+                    const std::vector<std::optional<campaign::FlightResult>>& results, const Finish& f) {
+  if (auto ok = campaign::write_results(f.out_dir, c, flights, results, f.wall_s, f.stopped); !ok)
+    return log_error("campaign", ok.error());
+  const auto t = campaign::tally(results);
+  bool history_failed = false;
+  if (!f.history.empty()) {
+    campaign::RunRecord record{f.label, f.started_utc, f.wall_s, f.stopped};
+    if (auto ok = campaign::record_run(f.history, c, flights, results, record); !ok) {
+      log_error("campaign", ok.error().prefixed("--history: "));
+      history_failed = true;
+    }
+  }
+  if (g.json) {
+    print_json_line(campaign::campaign_summary_json(c, flights, results, f.wall_s, f.stopped));
+  } else {
+    char line[256];
+    std::snprintf(line, sizeof line, "campaign %s: %zu flights: %zu passed, %zu failed, %zu errors, %zu not flown; %.1f s", c.name.c_str(),
+                  t.flights, t.passed, t.failed, t.errors, t.missing, f.wall_s);
+    std::cout << line << (f.stopped ? " (stopped: --resume flies the rest)" : "") << '\n'
+              << "results: " << f.out_dir << "/ (" << campaign::kCampaignSummaryFile << ", " << campaign::kJunitFile
+              << ", flights/<id>/)\n";
+    if (!f.history.empty() && !history_failed) std::cout << "history: " << f.history << " (hitl campaign history)\n";
+  }
+  return t.passed == t.flights && !history_failed ? kExitOk : kExitFailed;
+}
+
+/// The campaign file, read with the fault catalogue's "did you mean".
+Expected<campaign::Campaign> load_campaign_file(const std::string& file) {
   const faults::Suggest suggest = [](const std::string& name) { return closest(name, faults::fault_names()).value_or(""); };
-  auto c = campaign::load_campaign(o.file, suggest);
+  return campaign::load_campaign(file, suggest);
+}
+
+int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
+  auto c = load_campaign_file(o.file);
   if (!c) return log_error("campaign", c.error());
   const auto flights = campaign::expand(*c);
   const std::string out_dir = o.out_dir.empty() ? "campaign-" + c->name : o.out_dir;
@@ -216,29 +264,85 @@ int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
   auto outcome = campaign::run_campaign(*c, flights, ro, stop_flag_on_signals(), printer);
   printer.clear_line();
   if (!outcome) return log_error("campaign", outcome.error());
-  if (auto ok = campaign::write_results(out_dir, *c, flights, outcome->results, outcome->wall_s, outcome->stopped); !ok)
-    return log_error("campaign", ok.error());
-  const auto t = campaign::tally(outcome->results);
-  bool history_failed = false;
-  if (!history.empty()) {
-    campaign::RunRecord record{o.label, started_utc, outcome->wall_s, outcome->stopped};
-    if (auto ok = campaign::record_run(history, *c, flights, outcome->results, record); !ok) {
-      log_error("campaign", ok.error().prefixed("--history: "));
-      history_failed = true;
-    }
+  return finish_campaign(g, *c, flights, outcome->results, {out_dir, history, o.label, started_utc, outcome->wall_s, outcome->stopped});
+}
+
+struct CampaignCollectOptions {
+  std::string file;
+  std::string out_dir;
+  std::string history;
+  std::string label;
+  bool no_history = false;
+};
+
+/// hitl campaign collect: the flights that ran elsewhere (`--only`, each into the shared folder)
+/// gathered into the folder's summary.json and junit.xml, and one run of the history.
+int run_collect_command(const GlobalOptions& g, const CampaignCollectOptions& o) {
+  auto c = load_campaign_file(o.file);
+  if (!c) return log_error("campaign", c.error());
+  const auto flights = campaign::expand(*c);
+  const std::string out_dir = o.out_dir.empty() ? "campaign-" + c->name : o.out_dir;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(std::filesystem::path(out_dir) / "flights", ec))
+    return log_error("campaign", Error::input(out_dir + " has no flights/ folder: nothing to collect (hitl campaign run " + o.file +
+                                              " --only INDEX --out " + out_dir + " writes one flight there)"));
+  std::string history;
+  if (!o.no_history) {
+    auto h = history_path(o.history);
+    if (!h) return log_error("campaign", h.error().prefixed("--history: "));
+    history = *h;
   }
-  if (g.json) {
-    print_json_line(campaign::campaign_summary_json(*c, flights, outcome->results, outcome->wall_s, outcome->stopped));
-  } else {
-    char line[256];
-    std::snprintf(line, sizeof line, "campaign %s: %zu flights: %zu passed, %zu failed, %zu errors, %zu not flown; %.1f s", c->name.c_str(),
-                  t.flights, t.passed, t.failed, t.errors, t.missing, outcome->wall_s);
-    std::cout << line << (outcome->stopped ? " (stopped: --resume flies the rest)" : "") << '\n'
-              << "results: " << out_dir << "/ (" << campaign::kCampaignSummaryFile << ", " << campaign::kJunitFile
-              << ", flights/<id>/)\n";
-    if (!history.empty() && !history_failed) std::cout << "history: " << history << " (hitl campaign history)\n";
+  const auto results = campaign::read_results(out_dir, flights);
+  double wall_s = 0;  // the flights' own wall times: they ran elsewhere, maybe at once
+  for (const auto& r : results)
+    if (r) wall_s += r->wall_s;
+  log_info(g, "hitl campaign: " + c->name + ": collecting " + std::to_string(flights.size()) + " flights' results from " + out_dir);
+  return finish_campaign(g, *c, flights, results, {out_dir, history, o.label, utc_now(), wall_s, false});
+}
+
+struct CampaignMatrixOptions {
+  std::string file;
+  std::string output;  ///< -o FILE (empty: standard output)
+};
+
+struct CampaignK8sOptions {
+  std::string file;
+  std::string output;
+  std::string image;
+  std::string path_in_image;  ///< empty: FILE as given
+  std::string claim = "hitl-results";
+  std::size_t parallelism = 0;
+};
+
+/// `text` to -o FILE, or to standard output.
+int write_output(const std::string& text, const std::string& output) {
+  if (output.empty()) {
+    std::cout << text << '\n';
+    return kExitOk;
   }
-  return t.passed == t.flights && !history_failed ? kExitOk : kExitFailed;
+  std::ofstream out(output);
+  if (!(out << text << '\n'))
+    return log_error("campaign", Error::unavailable("cannot write " + output + ": " + std::strerror(errno)));
+  return kExitOk;
+}
+
+int run_matrix_command(const CampaignMatrixOptions& o) {
+  auto c = load_campaign_file(o.file);
+  if (!c) return log_error("campaign", c.error());
+  auto matrix = campaign::ci_matrix(*c, campaign::expand(*c));
+  if (!matrix) return log_error("campaign", matrix.error());
+  return write_output(matrix->dump(), o.output);
+}
+
+int run_k8s_command(const CampaignK8sOptions& o) {
+  auto c = load_campaign_file(o.file);
+  if (!c) return log_error("campaign", c.error());
+  campaign::IndexedJobOptions k;
+  k.image = o.image;
+  k.campaign_path = o.path_in_image.empty() ? o.file : o.path_in_image;
+  k.results_claim = o.claim;
+  k.parallelism = o.parallelism;
+  return write_output(campaign::k8s_indexed_job(*c, campaign::expand(*c).size(), k).dump(2), o.output);
 }
 
 int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o) {
@@ -315,6 +419,43 @@ void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state
   run->add_flag("--no-history", o->no_history, "Keep this run out of the history")->excludes(history);
   run->footer("Exit: 0 when every flight passed, 1 otherwise.");
   run->callback([&options, &state, o]() { state.exit_code = run_campaign_command(options, *o); });
+
+  auto co = std::make_shared<CampaignCollectOptions>();
+  auto* collect = sub->add_subcommand(
+      "collect", "Gather flights run elsewhere (--only INDEX into one folder: Slurm, Kubernetes, a CI matrix) into summary.json, "
+                 "junit.xml and the history");
+  collect->add_option("FILE", co->file, "The campaign file the flights came from")->required()->check(CLI::ExistingFile)
+      ->type_name("FILE.toml");
+  collect->add_option("--out", co->out_dir, "The shared results folder (default: campaign-NAME)")->type_name("DIR");
+  auto* collect_history = collect->add_option("--history", co->history, "The history database (default: as hitl campaign run)")
+                              ->type_name("FILE");
+  collect->add_option("--label", co->label, "Name this run in the history: a commit, a firmware version")->type_name("TEXT");
+  collect->add_flag("--no-history", co->no_history, "Keep this run out of the history")->excludes(collect_history);
+  collect->footer("Exit: 0 when every flight passed, 1 otherwise (a flight without a result counts as not flown).");
+  collect->callback([&options, &state, co]() { state.exit_code = run_collect_command(options, *co); });
+
+  auto mo = std::make_shared<CampaignMatrixOptions>();
+  auto* matrix = sub->add_subcommand("matrix", "The flights as a GitHub Actions matrix (JSON: include, one job per flight)");
+  matrix->add_option("FILE", mo->file, "The campaign file")->required()->check(CLI::ExistingFile)->type_name("FILE.toml");
+  matrix->add_option("-o,--output", mo->output, "Write it here (default: standard output)")->type_name("FILE.json");
+  matrix->footer("Each job runs: hitl campaign run FILE --only ${{ matrix.index }} --out DIR; then hitl campaign collect FILE "
+                 "--out DIR (docs/campaigns.md). At most 256 flights (GitHub's limit).");
+  matrix->callback([&state, mo]() { state.exit_code = run_matrix_command(*mo); });
+
+  auto ko = std::make_shared<CampaignK8sOptions>();
+  auto* k8s = sub->add_subcommand("k8s", "The flights as a Kubernetes Indexed Job (JSON manifest for kubectl apply -f)");
+  k8s->add_option("FILE", ko->file, "The campaign file")->required()->check(CLI::ExistingFile)->type_name("FILE.toml");
+  k8s->add_option("--image", ko->image, "The container image with hitl and the campaign's files")->required()->type_name("IMAGE");
+  k8s->add_option("--path-in-image", ko->path_in_image, "The campaign file inside the image (default: FILE as given)")
+      ->type_name("PATH");
+  k8s->add_option("--claim", ko->claim, "The PersistentVolumeClaim mounted at /results for every flight")->capture_default_str()
+      ->type_name("NAME");
+  k8s->add_option("-j,--parallelism", ko->parallelism, "Pods at a time (default: every flight)")->check(number_in(1, 10000))
+      ->type_name("N");
+  k8s->add_option("-o,--output", ko->output, "Write it here (default: standard output)")->type_name("FILE.json");
+  k8s->footer("Each pod runs hitl campaign run PATH --only $JOB_COMPLETION_INDEX --out /results/JOB; then hitl campaign collect "
+              "on the claim (docs/campaigns.md).");
+  k8s->callback([&state, ko]() { state.exit_code = run_k8s_command(*ko); });
 
   auto ho = std::make_shared<CampaignHistoryOptions>();
   auto* hist = sub->add_subcommand("history", "Per-criterion trends of a campaign's runs from the history, regressions flagged");

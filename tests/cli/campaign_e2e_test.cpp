@@ -255,6 +255,49 @@ TEST(CampaignE2E, AFlightPastItsTimeLimitIsKilledAndSaysSo) {
   EXPECT_EQ(reason.rfind("no result within the time limit of 0.2 s (campaign.time_limit_s): killed", 0), 0u) << reason;
 }
 
+// Past one machine: each flight run on its own (`--only INDEX`, as a Slurm task, a Kubernetes pod
+// or a CI job runs it) into one folder, then `collect` writes the folder's summary and JUnit and
+// adds one run to the history; a flight not run counts as not flown. `matrix` and `k8s` describe
+// the same flights.
+TEST(CampaignE2E, FlightsRunElsewhereAreCollectedAndDescribedForOtherEngines) {
+  const std::string dir = test::temp_dir();
+  const std::string file = write_campaign(dir, 3, "");
+  const std::string out = dir + "/shared";
+  test::Process a({test::hitl_binary(), "campaign", "run", file, "--only", "0", "--out", out});
+  test::Process b({test::hitl_binary(), "campaign", "run", file, "--only", "3", "--out", out});
+  EXPECT_EQ(a.wait(std::chrono::seconds(120)), 0) << a.err();
+  EXPECT_EQ(b.wait(std::chrono::seconds(120)), 0) << b.err();
+  auto c = test::run_hitl({"--json", "campaign", "collect", file, "--out", out, "--history", dir + "/h.sqlite", "--label", "k8s"});
+  EXPECT_EQ(c.exit_code, 1) << c.err;  // two flights not flown
+  const auto summary = test::last_json_line(c.out);
+  EXPECT_EQ(summary["flights"], 4) << summary.dump();
+  EXPECT_EQ(summary["passed"], 2) << summary.dump();
+  EXPECT_EQ(summary["missing"], 2) << summary.dump();
+  const auto file_summary = read_json(out + "/summary.json");
+  std::map<std::string, int> outcomes;
+  for (const auto& f : file_summary["results"]) ++outcomes[f["outcome"].get<std::string>()];
+  EXPECT_EQ(outcomes["passed"], 2) << file_summary.dump();
+  EXPECT_EQ(outcomes["missing"], 2) << file_summary.dump();
+  EXPECT_TRUE(std::filesystem::exists(out + "/junit.xml"));
+  auto h = test::run_hitl({"--json", "campaign", "history", "--history", dir + "/h.sqlite"});
+  EXPECT_NE(h.out.find("\"label\":\"k8s\""), std::string::npos) << h.out << h.err;
+  auto empty = test::run_hitl({"campaign", "collect", file, "--out", dir + "/nothing-here", "--no-history"});
+  EXPECT_EQ(empty.exit_code, 2);
+  EXPECT_NE(empty.err.find("has no flights/ folder"), std::string::npos) << empty.err;
+
+  auto m = test::run_hitl({"campaign", "matrix", file});
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const auto matrix = json::parse(m.out);
+  ASSERT_EQ(matrix["include"].size(), 4u);
+  EXPECT_EQ(matrix["include"][3]["index"], 3);
+  auto k = test::run_hitl({"campaign", "k8s", file, "--image", "hitl:test", "-o", dir + "/job.json"});
+  ASSERT_EQ(k.exit_code, 0) << k.err;
+  const auto job = read_json(dir + "/job.json");
+  EXPECT_EQ(job["spec"]["completions"], 4);
+  EXPECT_EQ(job["spec"]["completionMode"], "Indexed");
+  EXPECT_EQ(test::run_hitl({"campaign", "k8s", file}).exit_code, 2);  // --image is needed
+}
+
 TEST(CampaignE2E, ABadFileIsRefusedWithFileLineAndKey) {
   const auto dir = test::temp_dir();
   const auto file = write_campaign(dir, 3, "bad = { figure = \"trajectory.rms\", max = 1 }\n");
