@@ -25,7 +25,9 @@
 #include "engine/campaign/flight_run.h"
 #include "engine/campaign/history.h"
 #include "engine/campaign/results.h"
+#include "engine/campaign/slurm.h"
 #include "engine/campaign/work_units.h"
+#include "engine/net/child_process.h"
 #include "engine/faults/fault_spec.h"
 
 namespace hitl::cli {
@@ -345,6 +347,53 @@ int run_k8s_command(const CampaignK8sOptions& o) {
   return write_output(campaign::k8s_indexed_job(*c, campaign::expand(*c).size(), k).dump(2), o.output);
 }
 
+struct CampaignSlurmOptions {
+  std::string file;
+  std::string out_dir;
+  std::string partition;
+  std::size_t max_running = 0;
+  std::string history;
+  std::string label;
+  bool no_history = false;
+};
+
+/// hitl campaign slurm: the flights as a Slurm job array and collect after it, submitted with sbatch.
+int run_slurm_command(const GlobalOptions& g, const CampaignSlurmOptions& o) {
+  auto c = load_campaign_file(o.file);
+  if (!c) return log_error("campaign", c.error());
+  const auto sbatch = net::find_on_path("sbatch");
+  if (!sbatch)
+    return log_error("campaign", Error::unavailable("no sbatch on PATH: run this where Slurm's client is (Debian: slurm-client)"));
+  std::error_code ec;
+  campaign::SlurmOptions so;
+  so.hitl = self_path();
+  so.campaign_path = std::filesystem::absolute(o.file, ec).string();
+  so.out_dir = std::filesystem::absolute(o.out_dir.empty() ? "campaign-" + c->name : o.out_dir, ec).lexically_normal().string();
+  so.partition = o.partition;
+  so.max_running = o.max_running;
+  so.label = o.label;
+  if (!o.no_history) {
+    auto h = history_path(o.history);
+    if (!h) return log_error("campaign", h.error().prefixed("--history: "));
+    so.history = std::filesystem::absolute(*h, ec).string();
+  }
+  const std::size_t flights = campaign::expand(*c).size();
+  auto submitted = campaign::submit_to_slurm(*c, flights, so, *sbatch);
+  if (!submitted) return log_error("campaign", submitted.error());
+  if (g.json) {
+    print_json_line({{"type", "summary"},          {"campaign", c->name},
+                     {"flights", flights},         {"flights_job", submitted->flights_job},
+                     {"collect_job", submitted->collect_job}, {"out", so.out_dir},
+                     {"scripts", {submitted->flights_script, submitted->collect_script}}});
+  } else {
+    std::cout << "campaign " << c->name << ": " << flights << " flights submitted to Slurm as job array " << submitted->flights_job
+              << ", collect as job " << submitted->collect_job << " after it\n"
+              << "results: " << so.out_dir << "/ (" << campaign::kCampaignSummaryFile << " and " << campaign::kJunitFile
+              << " once collect has run; squeue -j " << submitted->flights_job << "," << submitted->collect_job << ")\n";
+  }
+  return kExitOk;
+}
+
 int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o) {
   auto path = history_path(o.history);
   if (!path) return log_error("campaign", path.error().prefixed("--history: "));
@@ -456,6 +505,24 @@ void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state
   k8s->footer("Each pod runs hitl campaign run PATH --only $JOB_COMPLETION_INDEX --out /results/JOB; then hitl campaign collect "
               "on the claim (docs/campaigns.md).");
   k8s->callback([&state, ko]() { state.exit_code = run_k8s_command(*ko); });
+
+  auto so = std::make_shared<CampaignSlurmOptions>();
+  auto* slurm = sub->add_subcommand("slurm", "Submit the flights to Slurm as a job array (sbatch --array), collect after it");
+  slurm->add_option("FILE", so->file, "The campaign file (every node reads it, the results folder and this hitl at the same "
+                                      "paths: a shared file system)")
+      ->required()->check(CLI::ExistingFile)->type_name("FILE.toml");
+  slurm->add_option("--out", so->out_dir, "The results folder, shared by the nodes (default: campaign-NAME)")->type_name("DIR");
+  slurm->add_option("--partition", so->partition, "The Slurm partition (default: the cluster's)")->type_name("NAME");
+  slurm->add_option("-j,--max-running", so->max_running, "At most N flights at once (the array's %N; default: as Slurm schedules)")
+      ->check(number_in(1, 10000))->type_name("N");
+  auto* slurm_history = slurm->add_option("--history", so->history, "collect's history database (default: as hitl campaign run)")
+                            ->type_name("FILE");
+  slurm->add_option("--label", so->label, "Name this run in the history: a commit, a firmware version")->type_name("TEXT");
+  slurm->add_flag("--no-history", so->no_history, "Keep this run out of the history")->excludes(slurm_history);
+  slurm->footer("Writes OUT/slurm/flights.sbatch (a task per flight: hitl campaign run FILE --only $SLURM_ARRAY_TASK_ID, "
+                "--time the campaign's time_limit_s) and OUT/slurm/collect.sbatch (--dependency=afterany), submits both; "
+                "each task's output in OUT/slurm/flight-N.out. Exit: 0 submitted, 1 sbatch refused, 2 no sbatch.");
+  slurm->callback([&options, &state, so]() { state.exit_code = run_slurm_command(options, *so); });
 
   auto ho = std::make_shared<CampaignHistoryOptions>();
   auto* hist = sub->add_subcommand("history", "Per-criterion trends of a campaign's runs from the history, regressions flagged");

@@ -13,7 +13,7 @@ _hitl_commands() {
         'params') echo 'show get set diff check export load reset' ;;
         'fly') echo 'takeoff land hold trajectory' ;;
         'board') echo 'install start stop status restore' ;;
-        'campaign') echo 'run collect matrix k8s history' ;;
+        'campaign') echo 'run collect matrix k8s slurm history' ;;
     esac
 }
 
@@ -56,6 +56,7 @@ _hitl_options() {
         'campaign collect') echo '-h --help --out --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign matrix') echo '-h --help -o --output --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign k8s') echo '-h --help --image --path-in-image --claim -j --parallelism -o --output --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'campaign slurm') echo '-h --help --out --partition -j --max-running --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign history') echo '-h --help --history --last --version --json -v --verbose -q --quiet --dialect --config' ;;
         'report') echo '-h --help -o --output --ulog --no-ulog --static --dygraphs --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -66,8 +67,8 @@ _hitl_options() {
 # file [PATTERN], dir, messages, message-rates; "optional KIND" when the value may be left out.
 _hitl_value() {
     case "$1|$2" in
-        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'campaign|--dialect'|'campaign run|--dialect'|'campaign collect|--dialect'|'campaign matrix|--dialect'|'campaign k8s|--dialect'|'campaign history|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
-        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'campaign|--config'|'campaign run|--config'|'campaign collect|--config'|'campaign matrix|--config'|'campaign k8s|--config'|'campaign history|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
+        '|--dialect'|'inspect|--dialect'|'sim|--dialect'|'target|--dialect'|'replay|--dialect'|'params|--dialect'|'params show|--dialect'|'params get|--dialect'|'params set|--dialect'|'params diff|--dialect'|'params check|--dialect'|'params export|--dialect'|'params load|--dialect'|'params reset|--dialect'|'arm|--dialect'|'disarm|--dialect'|'shell|--dialect'|'fly|--dialect'|'fly takeoff|--dialect'|'fly land|--dialect'|'fly hold|--dialect'|'fly trajectory|--dialect'|'doctor|--dialect'|'board|--dialect'|'board install|--dialect'|'board start|--dialect'|'board stop|--dialect'|'board status|--dialect'|'board restore|--dialect'|'bridge|--dialect'|'demo|--dialect'|'campaign|--dialect'|'campaign run|--dialect'|'campaign collect|--dialect'|'campaign matrix|--dialect'|'campaign k8s|--dialect'|'campaign slurm|--dialect'|'campaign history|--dialect'|'report|--dialect'|'completion|--dialect') echo 'file *.xml' ;;
+        '|--config'|'inspect|--config'|'sim|--config'|'target|--config'|'replay|--config'|'params|--config'|'params show|--config'|'params get|--config'|'params set|--config'|'params diff|--config'|'params check|--config'|'params export|--config'|'params load|--config'|'params reset|--config'|'arm|--config'|'disarm|--config'|'shell|--config'|'fly|--config'|'fly takeoff|--config'|'fly land|--config'|'fly hold|--config'|'fly trajectory|--config'|'doctor|--config'|'board|--config'|'board install|--config'|'board start|--config'|'board stop|--config'|'board status|--config'|'board restore|--config'|'bridge|--config'|'demo|--config'|'campaign|--config'|'campaign run|--config'|'campaign collect|--config'|'campaign matrix|--config'|'campaign k8s|--config'|'campaign slurm|--config'|'campaign history|--config'|'report|--config'|'completion|--config') echo 'file *.toml' ;;
         'inspect|--bind') echo 'text' ;;
         'inspect|--local-port') echo 'text' ;;
         'inspect|--record') echo 'file *.tlog' ;;
@@ -247,6 +248,11 @@ _hitl_value() {
         'campaign k8s|--claim') echo 'text' ;;
         'campaign k8s|-j'|'campaign k8s|--parallelism') echo 'text' ;;
         'campaign k8s|-o'|'campaign k8s|--output') echo 'file *.json' ;;
+        'campaign slurm|--out') echo 'text' ;;
+        'campaign slurm|--partition') echo 'text' ;;
+        'campaign slurm|-j'|'campaign slurm|--max-running') echo 'text' ;;
+        'campaign slurm|--history') echo 'file' ;;
+        'campaign slurm|--label') echo 'text' ;;
         'campaign history|--history') echo 'file' ;;
         'campaign history|--last') echo 'text' ;;
         'report|-o'|'report|--output') echo 'file *.html' ;;
@@ -266,6 +272,7 @@ _hitl_positional() {
         'campaign collect|'0) echo 'file *.toml' ;;
         'campaign matrix|'0) echo 'file *.toml' ;;
         'campaign k8s|'0) echo 'file *.toml' ;;
+        'campaign slurm|'0) echo 'file *.toml' ;;
         'report|'0) echo 'file *.tlog' ;;
         'completion|'0) echo 'choice bash zsh fish' ;;
     esac

@@ -26,6 +26,9 @@ if [ "${1:-}" = "--test" ]; then
   # groff-base, man-db and mandoc render and lint the man page, dpkg-dev's dpkg-shlibdeps computes
   # the package's Depends (file finds the binaries for it).
   packages+=(zsh fish groff-base man-db mandoc dpkg-dev)
+  # hitl campaign slurm against a real Slurm that the test starts (tests/cli/campaign_slurm_test.cpp):
+  # Debian's Slurm (controller, node daemon, client) and munge, its authentication.
+  packages+=(slurm-wlm munge)
   # hitl report's page rendered in headless Chromium (tests/cli/report_e2e_test.cpp).
   # Ubuntu ships Chromium only as a snap (its deb is a stub that installs the snap): there the test
   # skips outside CI instead; Debian's deb is the browser itself.
