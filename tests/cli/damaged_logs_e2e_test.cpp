@@ -142,7 +142,13 @@ TEST(DamagedLogsE2E, OneBytePercentFlippedStillMeasuresWithoutACrash) {
   EXPECT_LE(j["segments"].get<int>(), 3);
   EXPECT_GT(j["set_aside_records"].get<int>(), 0);
   EXPECT_LT(j["duration_s"].get<double>(), 10) << "never stretched to years by one stamp";
-  EXPECT_GT(hil_sensor_hz(j), 100);
+  // Still a rate of the right size: a flip in a frame loses that frame (about half the HIL_SENSOR
+  // frames, 1 % of bytes over a record of ~100), never the clock. Against the undamaged log's rate,
+  // not a fixed figure: the session is recorded in real time, its rate is the machine's (once
+  // 99.7 Hz against "> 100").
+  const double true_hz = hil_sensor_hz(inspect_json(session_log()));
+  EXPECT_GT(hil_sensor_hz(j), 0.2 * true_hz) << j.dump();
+  EXPECT_LT(hil_sensor_hz(j), 1.05 * true_hz) << j.dump();
 }
 
 TEST(DamagedLogsE2E, ReportOnATenPercentFlippedLogStillGivesAPage) {

@@ -46,7 +46,7 @@ TEST(Install, CmakeInstallPutsEveryFileInItsPlaceAndTheBinaryRuns) {
   EXPECT_TRUE(executable(destdir + "/usr/bin/hitl"));
   EXPECT_TRUE(executable(destdir + "/usr/share/doc/hitl/examples/phase1-check.sh"));
   for (const auto& entry : std::filesystem::recursive_directory_iterator(destdir))
-    EXPECT_EQ(entry.path().string().find("voxl"), std::string::npos) << "a board file in the host install: " << entry.path();
+    EXPECT_EQ(entry.path().string().find("/voxl-"), std::string::npos) << "a board file in the host install: " << entry.path();
 
   const auto version = test::run_program({destdir + "/usr/bin/hitl", "--version"});
   EXPECT_EQ(version.exit_code, 0) << version.err;
@@ -81,7 +81,9 @@ TEST(Install, CpackBuildsTheHostDebWithDebianDepends) {
   const auto contents = test::run_program({"dpkg-deb", "--contents", debs[0]});
   ASSERT_EQ(contents.exit_code, 0) << contents.err;
   for (const auto& f : installed_files()) EXPECT_NE(contents.out.find("./" + f + "\n"), std::string::npos) << f;
-  EXPECT_EQ(contents.out.find("voxl"), std::string::npos) << contents.out;
+  // Board files are named voxl-* (voxl-px4-hitl, voxl-hitl-vio-server); an example vehicle file may
+  // name the board it models (examples/vehicles/x500-voxl2-icm-42688-p.json).
+  EXPECT_EQ(contents.out.find("/voxl-"), std::string::npos) << contents.out;
 
   // The packaged binary runs and reports the package's version.
   const auto unpacked = out + "/root";
