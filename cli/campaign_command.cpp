@@ -52,10 +52,18 @@ struct CampaignHistoryOptions {
   std::size_t last_runs = 10;
 };
 
-/// --history FILE, or the default under the user's data folder.
+/// --history FILE, or the default under the user's data folder; the error names the option.
 Expected<std::string> history_path(const std::string& given) {
   if (!given.empty()) return given;
-  return campaign::default_history_path();
+  auto path = campaign::default_history_path();
+  if (!path) return path.error().prefixed("--history: ");
+  return path;
+}
+
+/// The history a run goes into: none with --no-history (empty), else as history_path().
+Expected<std::string> run_history(bool no_history, const std::string& given) {
+  if (no_history) return std::string();
+  return history_path(given);
 }
 
 std::string utc_now() {
@@ -235,12 +243,8 @@ int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
   const auto flights = campaign::expand(*c);
   const std::string out_dir = o.out_dir.empty() ? "campaign-" + c->name : o.out_dir;
   if (o.only) return run_one(g, *c, flights, o, out_dir);
-  std::string history;
-  if (!o.no_history) {
-    auto h = history_path(o.history);
-    if (!h) return log_error("campaign", h.error().prefixed("--history: "));
-    history = *h;
-  }
+  auto history = run_history(o.no_history, o.history);
+  if (!history) return log_error("campaign", history.error());
   const std::string started_utc = utc_now();
 
   std::error_code ec;
@@ -266,7 +270,7 @@ int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
   auto outcome = campaign::run_campaign(*c, flights, ro, stop_flag_on_signals(), printer);
   printer.clear_line();
   if (!outcome) return log_error("campaign", outcome.error());
-  return finish_campaign(g, *c, flights, outcome->results, {out_dir, history, o.label, started_utc, outcome->wall_s, outcome->stopped});
+  return finish_campaign(g, *c, flights, outcome->results, {out_dir, *history, o.label, started_utc, outcome->wall_s, outcome->stopped});
 }
 
 struct CampaignCollectOptions {
@@ -288,18 +292,14 @@ int run_collect_command(const GlobalOptions& g, const CampaignCollectOptions& o)
   if (!std::filesystem::is_directory(std::filesystem::path(out_dir) / "flights", ec))
     return log_error("campaign", Error::input(out_dir + " has no flights/ folder: nothing to collect (hitl campaign run " + o.file +
                                               " --only INDEX --out " + out_dir + " writes one flight there)"));
-  std::string history;
-  if (!o.no_history) {
-    auto h = history_path(o.history);
-    if (!h) return log_error("campaign", h.error().prefixed("--history: "));
-    history = *h;
-  }
+  auto history = run_history(o.no_history, o.history);
+  if (!history) return log_error("campaign", history.error());
   const auto results = campaign::read_results(out_dir, flights);
   double wall_s = 0;  // the flights' own wall times: they ran elsewhere, maybe at once
   for (const auto& r : results)
     if (r) wall_s += r->wall_s;
   log_info(g, "hitl campaign: " + c->name + ": collecting " + std::to_string(flights.size()) + " flights' results from " + out_dir);
-  return finish_campaign(g, *c, flights, results, {out_dir, history, o.label, utc_now(), wall_s, false});
+  return finish_campaign(g, *c, flights, results, {out_dir, *history, o.label, utc_now(), wall_s, false});
 }
 
 struct CampaignMatrixOptions {
@@ -372,11 +372,9 @@ int run_slurm_command(const GlobalOptions& g, const CampaignSlurmOptions& o) {
   so.partition = o.partition;
   so.max_running = o.max_running;
   so.label = o.label;
-  if (!o.no_history) {
-    auto h = history_path(o.history);
-    if (!h) return log_error("campaign", h.error().prefixed("--history: "));
-    so.history = std::filesystem::absolute(*h, ec).string();
-  }
+  auto history = run_history(o.no_history, o.history);
+  if (!history) return log_error("campaign", history.error());
+  if (!history->empty()) so.history = std::filesystem::absolute(*history, ec).string();
   const std::size_t flights = campaign::expand(*c).size();
   auto submitted = campaign::submit_to_slurm(*c, flights, so, *sbatch);
   if (!submitted) return log_error("campaign", submitted.error());
@@ -396,7 +394,7 @@ int run_slurm_command(const GlobalOptions& g, const CampaignSlurmOptions& o) {
 
 int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o) {
   auto path = history_path(o.history);
-  if (!path) return log_error("campaign", path.error().prefixed("--history: "));
+  if (!path) return log_error("campaign", path.error());
   std::string name = o.campaign;
   if (name.empty()) {
     auto names = campaign::history_campaigns(*path);
