@@ -16,6 +16,7 @@
 #include "engine/sensors/vehicle_file.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"
+#include "tests/support/recorded_flight.h"
 #include "tests/support/tools.h"
 
 namespace hitl {
@@ -29,25 +30,7 @@ constexpr double kRate_hz = 250.0;
 /// `hitl sim --vehicle FILE` at rest for kRest_s simulated seconds in lockstep with `hitl target`;
 /// the recording's path (empty, with a failure, when the run did not end well).
 std::string record_rest(const std::string& dir, const std::string& vehicle_file) {
-  const std::string tlog = dir + "/rest.tlog";
-  const uint16_t hil = test::free_udp_port();
-  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
-                       std::to_string(test::free_udp_port()), "--vio-port", "0", "--lockstep"});
-  if (!board.wait_for_stderr("EMULATED", 10s)) {
-    ADD_FAILURE() << board.err();
-    return "";
-  }
-  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
-                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0",
-                     "--duration", std::to_string(kRest_s), "--vehicle", vehicle_file, "--record", tlog});
-  const int code = sim.wait(180s);
-  board.signal(SIGINT);
-  board.wait(20s);
-  if (code != 0) {
-    ADD_FAILURE() << sim.err();
-    return "";
-  }
-  return tlog;
+  return test::record_against_target(dir + "/rest.tlog", {"--duration", std::to_string(kRest_s), "--vehicle", vehicle_file}, 180s);
 }
 
 /// The Allan deviation the profile's noise gives at tau: white noise (with the LSB's rounding,

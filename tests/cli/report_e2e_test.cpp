@@ -27,6 +27,7 @@
 #include "tests/support/json_lines.h"
 #include "tests/support/lockstep_session.h"
 #include "tests/support/process.h"
+#include "tests/support/recorded_flight.h"
 #include "tests/support/tools.h"
 #include "tests/support/ulog_writer.h"
 
@@ -492,27 +493,10 @@ double nearest(const std::vector<std::pair<double, double>>& series, double t_s)
 /// `hitl sim -t` a 2.5 m hover of `hover_s` seconds against `hitl target --lockstep`, recorded to
 /// DIR/NAME; the recording's path (empty, with a test failure, when the flight did not end well).
 std::string record_hover_against_target(const std::string& dir, const std::string& name, int hover_s) {
-  const std::string trajectory = dir + "/hover.json", tlog = dir + "/" + name;
+  const std::string trajectory = dir + "/hover.json";
   std::ofstream(trajectory) << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0},
                                                  {"t": )" << hover_s << R"(, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
-  const uint16_t hil = test::free_udp_port(), gcs = test::free_udp_port(), sim_local = test::free_udp_port();
-  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
-                       std::to_string(gcs), "--vio-port", "0", "--lockstep"});
-  if (!board.wait_for_stderr("EMULATED", 10s)) {
-    ADD_FAILURE() << board.err();
-    return "";
-  }
-  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
-                     std::to_string(sim_local), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0", "-t", trajectory,
-                     "--record", tlog});
-  const int code = sim.wait(150s);
-  board.signal(SIGINT);
-  board.wait(20s);
-  if (code != 0) {
-    ADD_FAILURE() << sim.err();
-    return "";
-  }
-  return tlog;
+  return test::record_against_target(dir + "/" + name, {"-t", trajectory}, 150s);
 }
 
 TEST(ReportE2E, AHoverAt2_5mPlotsTruthSetpointAndEstimateWithinCentimetres) {

@@ -20,6 +20,7 @@
 #include "engine/report/flight_log.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"
+#include "tests/support/recorded_flight.h"
 #include "tests/support/tools.h"
 
 namespace hitl {
@@ -34,28 +35,10 @@ constexpr double kImuRate_hz = 250.0;
 /// --lockstep`, with `extra` arguments, recorded to DIR/NAME; the path (empty, with a failure, when
 /// the flight did not end well).
 std::string record_hover(const std::string& name, const std::vector<std::string>& extra) {
-  const std::string tlog = test::temp_dir() + "/" + name;
-  const uint16_t hil = test::free_udp_port();
-  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
-                       std::to_string(test::free_udp_port()), "--vio-port", "0", "--lockstep"});
-  if (!board.wait_for_stderr("EMULATED", 10s)) {
-    ADD_FAILURE() << board.err();
-    return "";
-  }
-  std::vector<std::string> args{test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
-                                std::to_string(test::free_udp_port()), "--no-vio", "--clients", "0", "--lockstep", "--speed", "0",
-                                "-t", test::source_path("docs/examples/hover.json"), "--vehicle",
-                                test::source_path("docs/examples/vehicles/x500-vibration.json"), "--record", tlog};
+  std::vector<std::string> args{"-t", test::source_path("docs/examples/hover.json"), "--vehicle",
+                                test::source_path("docs/examples/vehicles/x500-vibration.json")};
   args.insert(args.end(), extra.begin(), extra.end());
-  test::Process sim(args);
-  const int code = sim.wait(120s);
-  board.signal(SIGINT);
-  board.wait(20s);
-  if (code != 0) {
-    ADD_FAILURE() << sim.err();
-    return "";
-  }
-  return tlog;
+  return test::record_against_target(test::temp_dir() + "/" + name, args, 120s);
 }
 
 struct Hover {
