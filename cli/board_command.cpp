@@ -4,6 +4,7 @@
 // step, the board's output, what is already changed and how to undo it.
 #include <iostream>
 
+#include "base/common/shell_quote.h"
 #include "cli/adb_options.h"
 #include "cli/commands.h"
 #include "cli/link_options.h"
@@ -72,12 +73,6 @@ void print_lines(const std::vector<std::string>& lines) {
   std::cout << std::flush;
 }
 
-std::string quoted_for_adb(const std::string& command) {
-  std::string q = "'";
-  for (char c : command) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 int run_plan_command(const GlobalOptions& g, const BoardOptions& o, const Reporter& r, board::BoardShell& shell,
                      const board::BoardPlan& plan) {
   if (o.dry_run) {
@@ -133,7 +128,7 @@ int run_plan_command(const GlobalOptions& g, const BoardOptions& o, const Report
       if (!plan.undo_command.empty() || !report.undo.empty()) std::cerr << "to undo: " << (plan.undo_command.empty() ? "by hand" : plan.undo_command) << '\n';
       if (!report.undo.empty()) {
         std::cerr << (plan.undo_command.empty() ? "" : "  or by hand, in this order:\n");
-        for (const auto& u : report.undo) std::cerr << "    adb shell " << quoted_for_adb(u) << '\n';
+        for (const auto& u : report.undo) std::cerr << "    adb shell " << shell_quoted(u) << '\n';
       }
     }
   }

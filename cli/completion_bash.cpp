@@ -4,16 +4,11 @@
 #include <map>
 #include <sstream>
 
+#include "base/common/shell_quote.h"
 #include "cli/completions.h"
 
 namespace hitl::cli {
 namespace {
-
-std::string bash_quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 std::string join_path(const std::vector<std::string>& path) {
   std::string out;
@@ -165,7 +160,7 @@ std::string bash_completion(const CommandModel& root, const std::vector<std::str
   out << "# MAVLink messages compiled into hitl (for --show, --expect).\n_hitl_messages=";
   std::string names;
   for (const auto& n : message_names) names += (names.empty() ? "" : " ") + n;
-  out << bash_quoted(names) << "\n\n";
+  out << shell_quoted(names) << "\n\n";
 
   out << "# _hitl_commands PATH: the subcommands of a command path ('' is hitl, 'params' is hitl params).\n"
          "_hitl_commands() {\n    case \"$1\" in\n";
@@ -173,7 +168,7 @@ std::string bash_completion(const CommandModel& root, const std::vector<std::str
     if (c->commands.empty()) continue;
     std::string words;
     for (const auto& s : c->commands) words += (words.empty() ? "" : " ") + s.name();
-    out << "        " << bash_quoted(join_path(c->path)) << ") echo " << bash_quoted(words) << " ;;\n";
+    out << "        " << shell_quoted(join_path(c->path)) << ") echo " << shell_quoted(words) << " ;;\n";
   }
   out << "    esac\n}\n\n";
 
@@ -183,7 +178,7 @@ std::string bash_completion(const CommandModel& root, const std::vector<std::str
     std::string words;
     for (const auto* o : accepted_options(root, c->path))
       for (const auto& s : o->spellings()) words += (words.empty() ? "" : " ") + s;
-    out << "        " << bash_quoted(join_path(c->path)) << ") echo " << bash_quoted(words) << " ;;\n";
+    out << "        " << shell_quoted(join_path(c->path)) << ") echo " << shell_quoted(words) << " ;;\n";
   }
   out << "    esac\n}\n\n";
 
@@ -194,7 +189,7 @@ std::string bash_completion(const CommandModel& root, const std::vector<std::str
     for (const auto* o : accepted_options(root, c->path)) {
       if (value_kind(*o).empty()) continue;
       if (!where.count(o)) order.push_back(o);
-      for (const auto& s : o->spellings()) where[o].push_back(bash_quoted(join_path(c->path) + "|" + s));
+      for (const auto& s : o->spellings()) where[o].push_back(shell_quoted(join_path(c->path) + "|" + s));
     }
   out << "# _hitl_value PATH OPTION: how the option's value completes (nothing for a flag): text, choice WORD...,\n"
          "# file [PATTERN], dir, messages, message-rates; \"optional KIND\" when the value may be left out.\n"
@@ -202,7 +197,7 @@ std::string bash_completion(const CommandModel& root, const std::vector<std::str
   for (const auto* o : order) {
     std::string patterns;
     for (const auto& p : where[o]) patterns += (patterns.empty() ? "" : "|") + p;
-    out << "        " << patterns << ") echo " << bash_quoted(value_kind(*o)) << " ;;\n";
+    out << "        " << patterns << ") echo " << shell_quoted(value_kind(*o)) << " ;;\n";
   }
   out << "    esac\n}\n\n";
 
@@ -215,8 +210,8 @@ std::string bash_completion(const CommandModel& root, const std::vector<std::str
       const auto kind = value_kind(p);
       if (kind.empty() || kind == "text") continue;
       const bool last_repeats = p.repeatable && i + 1 == positionals.size();
-      out << "        " << bash_quoted(join_path(c->path) + "|") << (last_repeats ? "*" : std::to_string(i)) << ") echo "
-          << bash_quoted(kind) << " ;;\n";
+      out << "        " << shell_quoted(join_path(c->path) + "|") << (last_repeats ? "*" : std::to_string(i)) << ") echo "
+          << shell_quoted(kind) << " ;;\n";
     }
   }
   out << "    esac\n}\n";

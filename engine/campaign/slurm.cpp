@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "base/common/shell_quote.h"
 #include "engine/campaign/work_units.h"
 #include "engine/net/child_process.h"
 
@@ -12,12 +13,6 @@ namespace hitl::campaign {
 namespace {
 
 constexpr int kSbatchTimeout_ms = 60000;
-
-std::string sh_quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 std::string header(const std::string& job_name, const SlurmOptions& o) {
   std::string s = "#!/bin/sh\n#SBATCH --job-name=" + job_name + "\n";
@@ -61,8 +56,8 @@ std::string slurm_flights_script(const Campaign& campaign, std::size_t flights, 
   s += "#SBATCH --output=" + o.out_dir + "/slurm/flight-%a.out\n";
   s += "# One flight of campaign " + campaign.name + " per task (docs/campaigns.md). Exit 1 is a flight that failed\n"
        "# its criteria: a result like any other, so the task still succeeds.\n";
-  s += sh_quoted(o.hitl) + " campaign run " + sh_quoted(o.campaign_path) + " --only \"$SLURM_ARRAY_TASK_ID\" --out " +
-       sh_quoted(o.out_dir) + "\nrc=$?\n[ \"$rc\" -le 1 ]\n";
+  s += shell_quoted(o.hitl) + " campaign run " + shell_quoted(o.campaign_path) + " --only \"$SLURM_ARRAY_TASK_ID\" --out " +
+       shell_quoted(o.out_dir) + "\nrc=$?\n[ \"$rc\" -le 1 ]\n";
   return s;
 }
 
@@ -71,9 +66,9 @@ std::string slurm_collect_script(const Campaign& campaign, const SlurmOptions& o
   s += "#SBATCH --time=" + slurm_time(300) + "\n#SBATCH --ntasks=1\n";
   s += "#SBATCH --output=" + o.out_dir + "/slurm/collect.out\n";
   s += "# Every flight's result into summary.json, junit.xml and the history, once every task has ended.\n";
-  s += sh_quoted(o.hitl) + " campaign collect " + sh_quoted(o.campaign_path) + " --out " + sh_quoted(o.out_dir);
-  s += o.history.empty() ? std::string(" --no-history") : " --history " + sh_quoted(o.history);
-  if (!o.label.empty()) s += " --label " + sh_quoted(o.label);
+  s += shell_quoted(o.hitl) + " campaign collect " + shell_quoted(o.campaign_path) + " --out " + shell_quoted(o.out_dir);
+  s += o.history.empty() ? std::string(" --no-history") : " --history " + shell_quoted(o.history);
+  if (!o.label.empty()) s += " --label " + shell_quoted(o.label);
   s += "\nrc=$?\n[ \"$rc\" -le 1 ]\n";
   return s;
 }

@@ -4,17 +4,9 @@
 #include <cctype>
 #include <cmath>
 
+#include "base/common/shell_quote.h"
+
 namespace hitl::campaign {
-namespace {
-
-/// `text` as one single-quoted sh word.
-std::string sh_quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-}  // namespace
 
 Expected<nlohmann::json> ci_matrix(const Campaign& campaign, const std::vector<Flight>& flights) {
   if (flights.size() > kMaxCiMatrixJobs)
@@ -40,8 +32,8 @@ nlohmann::json k8s_indexed_job(const Campaign& campaign, std::size_t flights, co
   const std::string name = k8s_job_name(campaign.name);
   const nlohmann::json labels = {{"app.kubernetes.io/name", "hitl"}, {"hitl/campaign", name.substr(std::string("hitl-campaign-").size())}};
   // Exit 1 is a flight that failed its criteria: a result like any other, not a pod to retry.
-  const std::string script = "hitl campaign run " + sh_quoted(options.campaign_path) +
-                             " --only \"$JOB_COMPLETION_INDEX\" --out /results/" + sh_quoted(name) +
+  const std::string script = "hitl campaign run " + shell_quoted(options.campaign_path) +
+                             " --only \"$JOB_COMPLETION_INDEX\" --out /results/" + shell_quoted(name) +
                              "; rc=$?; [ \"$rc\" -le 1 ]";
   nlohmann::json container = {{"name", "flight"},
                               {"image", options.image},
