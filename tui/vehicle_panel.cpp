@@ -42,7 +42,7 @@ void draw_vehicle(Screen& screen, const Rect& r, const VehiclePanel& v) {
     const int bars_w = in.w - text_w - 1;
     const int command_w = wide ? bars_w / 2 : bars_w;
     int x = in.x;
-    put(screen, in, x, y, format("M%zu ", i + 1), {Color::Dim, false, false});
+    put(screen, in, x, y, format("M%zu ", i), {Color::Dim, false, false});
     x += 3;
     put(screen, in, x, y, v.motors ? bar(u, command_w) : fit("", command_w), {Color::Accent, false, false});
     x += command_w;

@@ -211,7 +211,7 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
   {
     Plot p{"motors", "Motor commands (HIL_ACTUATOR_CONTROLS)", time_label, "command (0..1)", {}, true, false, ""};
     for (std::size_t k = 0; k < log.motors.size(); ++k)
-      add_if(p, thinned("motor " + std::to_string(k + 1), SeriesStyle::Plain, log.motors[k].t_s, log.motors[k].value, n));
+      add_if(p, thinned("motor " + std::to_string(k), SeriesStyle::Plain, log.motors[k].t_s, log.motors[k].value, n));
     p.sources = "HIL_ACTUATOR_CONTROLS controls[0..3] from the vehicle";
     push(std::move(p));
   }

@@ -330,7 +330,7 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
     EXPECT_EQ(samples("altitude", "truth"), counts.truth);
     EXPECT_EQ(samples("tracking-error", "error against truth"), counts.tracking);
     EXPECT_EQ(samples("attitude-roll", "estimate"), counts.attitude);
-    EXPECT_EQ(samples("motors", "motor 1"), counts.actuators);
+    EXPECT_EQ(samples("motors", "motor 0"), counts.actuators);
     EXPECT_EQ(samples("velocity-up", "estimate"), counts.estimate);
     EXPECT_EQ(samples("rate-roll", "truth"), counts.truth);
     EXPECT_EQ(samples("sticks", "throttle"), counts.manual_control);

@@ -134,7 +134,7 @@ TEST(Render, MotorBarsAreProportional) {
     for (int i = x + 3; s.at(i, y) == '#' || s.at(i, y) == '-'; ++i) cells += s.at(i, y);
     return cells;
   };
-  const std::string m1 = bar_of("M1 "), m2 = bar_of("M2 "), m3 = bar_of("M3 "), m4 = bar_of("M4 ");
+  const std::string m1 = bar_of("M0 "), m2 = bar_of("M1 "), m3 = bar_of("M2 "), m4 = bar_of("M3 ");
   ASSERT_GT(m1.size(), 10u);
   EXPECT_EQ(m1.size(), m3.size());
   const auto filled = [](const std::string& b) { return static_cast<long>(std::count(b.begin(), b.end(), '#')); };
@@ -142,9 +142,9 @@ TEST(Render, MotorBarsAreProportional) {
   EXPECT_EQ(filled(m2), std::lround(0.25 * static_cast<double>(m2.size())));
   EXPECT_EQ(filled(m3), static_cast<long>(m3.size()));
   EXPECT_EQ(filled(m4), 0);
-  EXPECT_EQ(s.style_at(s.find("M1 ").first + 3, s.find("M1 ").second).color, Color::Accent);
-  EXPECT_NE(s.row(s.find("M1 ").second).find("0.50"), std::string::npos);
-  EXPECT_NE(s.row(s.find("M1 ").second).find("500 rad/s"), std::string::npos);
+  EXPECT_EQ(s.style_at(s.find("M0 ").first + 3, s.find("M0 ").second).color, Color::Accent);
+  EXPECT_NE(s.row(s.find("M0 ").second).find("0.50"), std::string::npos);
+  EXPECT_NE(s.row(s.find("M0 ").second).find("500 rad/s"), std::string::npos);
 }
 
 TEST(Render, BarsAndNumbersNeverShowANaNAsAValue) {
@@ -183,7 +183,7 @@ TEST(Render, WideAndTallAt200x60) {
   EXPECT_NE(s.row(imu_y).find("12345"), std::string::npos);
   EXPECT_GE(s.find("HIL sensor_imu received").second, 0);
   EXPECT_GE(s.find("polled 0.4 s ago").second, 0);
-  const int m1_y = s.find("M1 ").second;
+  const int m1_y = s.find("M0 ").second;
   const std::string m1 = s.row(m1_y);
   EXPECT_EQ(std::count(m1.begin(), m1.end(), '#') > 20, true) << m1;  // command bar + rotor bar
   EXPECT_EQ(s.find("late 3").second, s.find("out 1000").second);  // three fields a line
