@@ -67,6 +67,8 @@ void classify(OptionModel& m) {
     m.kind = ValueKind::MessageList;
   } else if (m.type_name == value_type::kMessageRateList) {
     m.kind = ValueKind::MessageRates;
+  } else if (m.type_name == value_type::kFaultSpec) {
+    m.kind = ValueKind::FaultSpec;
   } else if (file_type || file_check || m.positional == file_prefix) {
     m.kind = ValueKind::File;
     if (file_type && m.type_name.size() > file_prefix.size()) m.file_pattern = "*" + m.type_name.substr(file_prefix.size());
@@ -88,7 +90,7 @@ void classify(OptionModel& m) {
   }
 }
 
-OptionModel read_option(CLI::Option& o, const std::string& group, bool help) {
+OptionModel read_option(CLI::Option& o, const std::string& group, bool help, bool capture_default = true) {
   OptionModel m;
   m.long_names = o.get_lnames();
   m.short_names = o.get_snames();
@@ -102,7 +104,12 @@ OptionModel read_option(CLI::Option& o, const std::string& group, bool help) {
   if (!suffix.empty() && m.type_name.size() >= suffix.size() &&
       m.type_name.compare(m.type_name.size() - suffix.size(), suffix.size(), suffix) == 0)
     m.type_name.erase(m.type_name.size() - suffix.size());
-  o.capture_default_str();
+  if (capture_default) o.capture_default_str();
+  for (const CLI::Option* other : o.get_excludes()) {
+    const auto names = other->get_lnames();
+    m.excludes.push_back(names.empty() ? other->get_name() : "--" + names.front());
+  }
+  std::sort(m.excludes.begin(), m.excludes.end());  // CLI11 keeps them by address
   m.default_value = o.get_default_str();
   if (m.default_value == "[]") m.default_value.clear();  // an empty list
   m.values_min = o.get_expected_min() > 0 ? 1 : 0;
@@ -134,6 +141,15 @@ void read_options(CLI::App& app, const std::string& group_name, std::vector<Opti
   for (CLI::App* sub : app.get_subcommands([](CLI::App* a) { return a->get_name().empty(); }))
     if (!sub->get_group().empty() && !sub->get_disabled()) read_options(*sub, sub->get_group(), out);
 }
+
+}  // namespace
+
+OptionModel read_option_model(const CLI::Option& option) {
+  // CLI11 hands validators out only through non-const calls; nothing here changes the option.
+  return read_option(const_cast<CLI::Option&>(option), option.get_group(), false, false);
+}
+
+namespace {
 
 CommandModel read_command(CLI::App& app, std::vector<std::string> path) {
   CommandModel c;

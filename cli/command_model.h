@@ -18,7 +18,8 @@ enum class ValueKind {
   File,         ///< a file path, `file_pattern` ("*.json") when the type says FILE.json
   Directory,    ///< a directory
   MessageList,  ///< MAVLink message names, comma-separated (value_type::kMessageList)
-  MessageRates  ///< NAME=HZ pairs, comma-separated (value_type::kMessageRateList)
+  MessageRates, ///< NAME=HZ pairs, comma-separated (value_type::kMessageRateList)
+  FaultSpec     ///< a fault, its name from the catalogue first (value_type::kFaultSpec)
 };
 
 struct OptionModel {
@@ -40,6 +41,7 @@ struct OptionModel {
   ValueKind kind = ValueKind::None;
   std::vector<std::string> choices;      ///< for ValueKind::Choice
   std::string file_pattern;              ///< for ValueKind::File: "*.json", or empty for any file
+  std::vector<std::string> excludes;     ///< the options it cannot be given with, by their first spelling
 
   bool is_flag() const { return values_max == 0; }
   bool optional_value() const { return values_min == 0 && values_max > 0; }
@@ -69,6 +71,10 @@ struct CommandModel {
 /// and defaults only through non-const calls; the app is left as it was, except that each
 /// option's default text is captured.
 CommandModel read_command_model(CLI::App& app);
+
+/// The model of one option as it stands (its default text as already captured): what `--help`
+/// shows while the command line is being parsed.
+OptionModel read_option_model(const CLI::Option& option);
 
 /// Every command of the tree, depth first, `root` first.
 std::vector<const CommandModel*> all_commands(const CommandModel& root);

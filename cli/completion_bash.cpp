@@ -30,6 +30,7 @@ std::string value_kind(const OptionModel& o) {
     case ValueKind::Directory: kind = "dir"; break;
     case ValueKind::MessageList: kind = "messages"; break;
     case ValueKind::MessageRates: kind = "message-rates"; break;
+    case ValueKind::FaultSpec: kind = "faults"; break;
   }
   return o.optional_value() ? "optional " + kind : kind;
 }
@@ -59,6 +60,11 @@ _hitl_complete_value() {
             [[ "$cur" == *,* ]] && head="${cur%,*},"
             compopt -o nospace 2>/dev/null
             mapfile -t COMPREPLY < <(compgen -P "$head" -S = -W "$_hitl_messages" -- "${cur##*,}") ;;
+        faults)
+            # The name only: its arguments, start and duration (":2,0.8@15+5") are the user's.
+            [[ "$cur" == *[:@+]* ]] && { COMPREPLY=(); return; }
+            compopt -o nospace 2>/dev/null
+            mapfile -t COMPREPLY < <(compgen -W "$_hitl_faults" -- "$cur") ;;
         *)
             COMPREPLY=() ;;
     esac
@@ -149,7 +155,8 @@ complete -F _hitl hitl
 
 }  // namespace
 
-std::string bash_completion(const CommandModel& root, const std::vector<std::string>& message_names) {
+std::string bash_completion(const CommandModel& root, const std::vector<std::string>& message_names,
+                            const std::vector<std::string>& fault_names) {
   const auto commands = all_commands(root);
   std::ostringstream out;
   out << "# bash completion for hitl                                            -*- shell-script -*-\n"
@@ -161,6 +168,9 @@ std::string bash_completion(const CommandModel& root, const std::vector<std::str
   std::string names;
   for (const auto& n : message_names) names += (names.empty() ? "" : " ") + n;
   out << shell_quoted(names) << "\n\n";
+  std::string faults;
+  for (const auto& n : fault_names) faults += (faults.empty() ? "" : " ") + n;
+  out << "# The faults hitl injects (for --fault).\n_hitl_faults=" << shell_quoted(faults) << "\n\n";
 
   out << "# _hitl_commands PATH: the subcommands of a command path ('' is hitl, 'params' is hitl params).\n"
          "_hitl_commands() {\n    case \"$1\" in\n";

@@ -6,6 +6,7 @@
 #include "cli/command_model.h"
 #include "cli/commands.h"
 #include "cli/completions.h"
+#include "engine/faults/fault_spec.h"
 
 namespace hitl::cli {
 namespace {
@@ -36,9 +37,10 @@ void add_completion_command(CLI::App& app, GlobalOptions&, RunState& state) {
   sub->preparse_callback([&app, model](std::size_t) { *model = read_command_model(app); });
   sub->callback([&state, shell, model]() {
     const auto messages = compiled_message_names();
-    if (*shell == "bash") std::cout << bash_completion(*model, messages);
-    else if (*shell == "zsh") std::cout << zsh_completion(*model, messages);
-    else std::cout << fish_completion(*model, messages);
+    const auto faults = faults::fault_names();
+    if (*shell == "bash") std::cout << bash_completion(*model, messages, faults);
+    else if (*shell == "zsh") std::cout << zsh_completion(*model, messages, faults);
+    else std::cout << fish_completion(*model, messages, faults);
     std::cout << std::flush;
     state.exit_code = std::cout ? kExitOk : kExitFailed;
   });

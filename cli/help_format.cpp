@@ -3,8 +3,10 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
-#include <regex>
 #include <sstream>
+
+#include "cli/command_model.h"
+#include "cli/option_words.h"
 
 namespace hitl::cli {
 namespace {
@@ -16,24 +18,6 @@ std::size_t terminal_width() {
 }
 
 }  // namespace
-
-std::string plain_type_text(const std::string& opts) {
-  std::string s = opts;
-  // CheckedTransformer: "ENUM:value in {attitude->1,velocity->0} OR {1,0}" -> "attitude|velocity".
-  static const std::regex enum_re(R"(ENUM:value in \{([^}]*)\}( OR \{[^}]*\})?)");
-  std::smatch m;
-  while (std::regex_search(s, m, enum_re)) {
-    std::string names, item;
-    std::stringstream items(m[1].str());
-    while (std::getline(items, item, ',')) names += (names.empty() ? "" : "|") + item.substr(0, item.find("->"));
-    s = m.prefix().str() + names + m.suffix().str();
-  }
-  // Range: "UINT:INT in [1 - 65535]" -> "UINT 1..65535".
-  s = std::regex_replace(s, std::regex(R"(:(INT|FLOAT|NUMBER)? ?in \[([^ \]]+) - ([^ \]]+)\])"), " $2..$3");
-  // IsMember: ":{1.0,2.0}" -> " 1.0|2.0".
-  s = std::regex_replace(s, std::regex(R"(:\{([^}]*)\})"), " {$1}");
-  return s;
-}
 
 std::string wrap_words(const std::string& text, std::size_t width) {
   std::string out;
@@ -59,15 +43,22 @@ std::string wrap_words(const std::string& text, std::size_t width) {
 
 HelpFormatter::HelpFormatter() : width_(terminal_width()) { column_width(36); }
 
-std::string HelpFormatter::make_option_opts(const CLI::Option* opt) const {
-  return plain_type_text(CLI::Formatter::make_option_opts(opt));
-}
-
 std::string HelpFormatter::make_option(const CLI::Option* opt, bool is_positional) const {
-  const std::string name = "  " + make_option_name(opt, is_positional) + make_option_opts(opt);
+  const OptionModel o = read_option_model(*opt);
+  std::string name = "  ";
+  if (is_positional) {
+    name += option_metavar(o);
+  } else {
+    std::string spellings;
+    for (const auto& s : o.spellings()) spellings += (spellings.empty() ? "" : ", ") + s;
+    name += spellings;
+    if (const auto value = option_value_tag(o); !value.empty()) name += " " + value;
+  }
+  std::string text = as_sentence(o.description);
+  for (const auto& note : option_notes(o)) text += (text.empty() ? "" : " ") + note;
   const std::size_t column = get_column_width();
   const std::size_t room = width_ > column + 20 ? width_ - column : 40;
-  const std::string desc = wrap_words(make_option_desc(opt), room);
+  const std::string desc = wrap_words(text, room);
   std::string out = name;
   if (desc.empty()) return out + "\n";
   if (name.size() >= column) out += "\n" + std::string(column, ' ');

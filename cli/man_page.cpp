@@ -25,11 +25,6 @@ uint32_t next_code_point(const std::string& s, std::size_t& i) {
 std::string bold(const std::string& s) { return "\\fB" + roff_escape(s) + "\\fR"; }
 std::string italic(const std::string& s) { return "\\fI" + roff_escape(s) + "\\fR"; }
 
-std::string sentence(std::string s) {
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\n')) s.pop_back();
-  if (!s.empty() && s.back() != '.' && s.back() != '!' && s.back() != '?') s += '.';
-  return s;
-}
 
 /// The option's tag line: "\fB\-i\fR, \fB\-\-target\-ip\fR \fITEXT\fR".
 std::string option_tag(const OptionModel& o) {
@@ -37,23 +32,14 @@ std::string option_tag(const OptionModel& o) {
   std::string tag;
   for (const auto& s : o.spellings()) tag += (tag.empty() ? "" : ", ") + bold(s);
   if (!o.is_flag()) {
-    const std::string value = italic(o.type_name.empty() ? "VALUE" : o.type_name);
-    tag += " " + (o.optional_value() ? "[" + value + "]" : value);
+    tag += " " + italic(option_value_tag(o));
   }
   return tag;
 }
 
 void write_option(std::ostringstream& out, const OptionModel& o) {
-  out << ".TP\n" << option_tag(o) << "\n" << roff_escape(sentence(o.description)) << "\n";
-  std::vector<std::string> notes;
-  if (const auto c = option_constraints(o); !c.empty()) notes.push_back("Accepts " + c + ".");
-  if (!o.default_value.empty()) {
-    const auto unit = option_unit(o);
-    notes.push_back("Default: " + o.default_value + (unit.empty() || unit == "%" ? unit : " " + unit) + ".");
-  }
-  if (o.repeatable && !o.is_flag()) notes.push_back("May be given more than once.");
-  if (o.required) notes.push_back("Required.");
-  for (const auto& n : notes) out << roff_escape(n) << "\n";
+  out << ".TP\n" << option_tag(o) << "\n" << roff_escape(as_sentence(o.description)) << "\n";
+  for (const auto& n : option_notes(o)) out << roff_escape(n) << "\n";
 }
 
 void write_options(std::ostringstream& out, const std::vector<const OptionModel*>& options) {
@@ -80,7 +66,7 @@ void write_command(std::ostringstream& out, const CommandModel& c) {
   for (const auto* p : c.positionals())
     out << " " << (p->required ? italic(p->positional) : "[" + italic(p->positional) + "]") << (p->repeatable ? " ..." : "");
   if (!c.commands.empty()) out << " " << italic("COMMAND");
-  out << "\n.PP\n" << roff_escape(sentence(c.description)) << "\n";
+  out << "\n.PP\n" << roff_escape(as_sentence(c.description)) << "\n";
   std::vector<const OptionModel*> own;
   for (const auto& o : c.options) own.push_back(&o);
   write_options(out, own);

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <set>
 
+#include "cli/value_types.h"
+
 namespace hitl::cli {
 namespace {
 
@@ -27,10 +29,6 @@ std::string refuse(const std::string& text, double min, double max) {
   return {};
 }
 
-bool is_number_type(const std::string& type_name) {
-  static const std::set<std::string> floats = {"FLOAT", "S", "MS", "HZ", "PCT", "M", "M_S", "DEG", "RAD"};
-  return floats.count(type_name) > 0;
-}
 
 }  // namespace
 
@@ -64,7 +62,7 @@ void add_number_checks(CLI::App& app) {
     if (o->get_expected_max() == 0) continue;  // a flag
     std::string type = o->get_type_name();  // "FLOAT:POSITIVE": the type, then the checks' descriptions
     type = type.substr(0, type.find(':'));
-    if (is_number_type(type)) o->check(number_check(-kMaxOptionMagnitude, kMaxOptionMagnitude, ""));
+    if (value_type::is_floating(type)) o->check(number_check(-kMaxOptionMagnitude, kMaxOptionMagnitude, ""));
     else if (type == "UINT") o->check(non_negative_integer());
   }
   for (CLI::App* sub : app.get_subcommands({})) add_number_checks(*sub);

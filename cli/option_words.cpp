@@ -1,7 +1,10 @@
 #include "cli/option_words.h"
 
 #include <map>
+#include <cctype>
 #include <regex>
+
+#include "cli/value_types.h"
 
 namespace hitl::cli {
 namespace {
@@ -48,6 +51,53 @@ std::string option_constraints(const OptionModel& o) {
   for (const auto& c : o.checks)
     if (c.find('{') == std::string::npos) words.push_back(check_words(c));
   return join(words, "; ");
+}
+
+std::string option_accepts(const OptionModel& o) {
+  const std::string constraints = option_constraints(o);
+  std::string kind;
+  if (!o.is_flag() && o.kind != ValueKind::Choice) {
+    if (value_type::is_integer(o.type_name)) kind = "an integer";
+    else if (value_type::is_floating(o.type_name)) kind = "a number";
+  }
+  if (kind.empty() || constraints.empty()) return kind + constraints;
+  return kind + ", " + constraints;
+}
+
+std::string option_metavar(const OptionModel& o) {
+  if (!o.positional.empty()) return o.positional;
+  if (o.is_flag()) return {};
+  if (o.type_name == "BOOLEAN") return "true|false";
+  if (o.kind == ValueKind::Choice && !o.choices.empty() && value_type::is_generic(o.type_name)) return join(o.choices, "|");
+  if (!value_type::is_generic(o.type_name) || o.long_names.empty()) return o.type_name.empty() ? "VALUE" : o.type_name;
+  std::string name = o.long_names.front();
+  for (char& c : name) c = c == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return name;
+}
+
+std::string as_sentence(std::string s) {
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\n')) s.pop_back();
+  if (!s.empty() && s.back() != '.' && s.back() != '!' && s.back() != '?') s += '.';
+  return s;
+}
+
+std::string option_value_tag(const OptionModel& o) {
+  const std::string value = option_metavar(o);
+  if (value.empty() || !o.optional_value() || value.front() == '[') return value;
+  return "[" + value + "]";
+}
+
+std::vector<std::string> option_notes(const OptionModel& o) {
+  std::vector<std::string> notes;
+  if (const auto c = option_accepts(o); !c.empty()) notes.push_back("Accepts " + c + ".");
+  if (!o.default_value.empty()) {
+    const auto unit = option_unit(o);
+    notes.push_back("Default: " + o.default_value + (unit.empty() || unit == "%" ? unit : " " + unit) + ".");
+  }
+  if (!o.excludes.empty()) notes.push_back("Not with " + join(o.excludes, ", ") + ".");
+  if (o.repeatable && !o.is_flag()) notes.push_back("May be given more than once.");
+  if (o.required) notes.push_back("Required.");
+  return notes;
 }
 
 std::string toml_value_type(const OptionModel& o) {

@@ -14,6 +14,7 @@
 #include "cli/session_dashboard.h"
 #include "cli/report_output.h"
 #include "cli/sim_output.h"
+#include "cli/value_types.h"
 #include "engine/faults/fault_schedule.h"
 #include "engine/faults/scenario.h"
 #include "engine/hil/session.h"
@@ -364,7 +365,7 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                   "Inject a fault at simulated time T for DUR seconds (without @T: from the start; without +DUR: to the "
                   "end), e.g. gps-loss@20+10, motor:2,0.6@15; repeatable. Faults: " + names +
                       " (their arguments and units: docs/faults.md)")
-      ->type_name("NAME[:ARGS][@T[+DUR]]")->group(faults_group);
+      ->type_name(value_type::kFaultSpec)->group(faults_group);
   sub->add_option("--scenario", opt->scenario_file,
                   "Faults from a JSON file: {\"events\": [{\"at_s\": 20, \"fault\": \"gps-loss\", \"duration_s\": 10}, ...]}")
       ->type_name("FILE.json")->group(faults_group);

@@ -6,6 +6,9 @@
 # MAVLink messages compiled into hitl (for --show, --expect).
 _hitl_messages='ACTUATOR_OUTPUT_STATUS ATTITUDE ATTITUDE_QUATERNION ATTITUDE_TARGET AUTOPILOT_VERSION BATTERY_STATUS COMMAND_ACK COMMAND_INT COMMAND_LONG DISTANCE_SENSOR ESTIMATOR_STATUS EVENT EXTENDED_SYS_STATE GLOBAL_POSITION_INT GPS_RAW_INT HEARTBEAT HIGHRES_IMU HIL_ACTUATOR_CONTROLS HIL_GPS HIL_SENSOR HIL_STATE_QUATERNION HOME_POSITION LOCAL_POSITION_NED MANUAL_CONTROL MESSAGE_INTERVAL NAMED_VALUE_FLOAT NAMED_VALUE_INT ODOMETRY PARAM_REQUEST_LIST PARAM_REQUEST_READ PARAM_SET PARAM_VALUE PING POSITION_TARGET_LOCAL_NED RC_CHANNELS RC_CHANNELS_OVERRIDE SCALED_IMU SCALED_PRESSURE SERIAL_CONTROL SET_ATTITUDE_TARGET SET_POSITION_TARGET_LOCAL_NED STATUSTEXT SYSTEM_TIME SYS_STATUS TIMESYNC VFR_HUD VIBRATION'
 
+# The faults hitl injects (for --fault).
+_hitl_faults='gps-loss gps-jump gps-degrade imu-bias gyro-bias mag-offset baro-drift motor vio-loss hil-drop hil-delay imu-noise imu-stuck imu-clip imu-vibration mag-stuck mag-scale baro-offset baro-stuck gps-drift gps-noise prop-damage payload wind gust turbulence actuators-stale vio-drift vio-jump vio-quality hil-burst hil-jitter hil-reorder hil-dup hil-rate vio-drop vio-delay vio-burst vio-jitter vio-reorder vio-dup vio-rate rangefinder-stuck rangefinder-no-return'
+
 # _hitl_commands PATH: the subcommands of a command path ('' is hitl, 'params' is hitl params).
 _hitl_commands() {
     case "$1" in
@@ -113,7 +116,7 @@ _hitl_value() {
         'sim|--seed') echo 'text' ;;
         'sim|-t'|'sim|--trajectory') echo 'file *.json' ;;
         'sim|--trajectory-mode') echo 'choice attitude velocity' ;;
-        'sim|--fault') echo 'text' ;;
+        'sim|--fault') echo 'faults' ;;
         'sim|--scenario') echo 'file *.json' ;;
         'sim|--clients') echo 'text' ;;
         'sim|--gcs') echo 'text' ;;
@@ -302,6 +305,11 @@ _hitl_complete_value() {
             [[ "$cur" == *,* ]] && head="${cur%,*},"
             compopt -o nospace 2>/dev/null
             mapfile -t COMPREPLY < <(compgen -P "$head" -S = -W "$_hitl_messages" -- "${cur##*,}") ;;
+        faults)
+            # The name only: its arguments, start and duration (":2,0.8@15+5") are the user's.
+            [[ "$cur" == *[:@+]* ]] && { COMPREPLY=(); return; }
+            compopt -o nospace 2>/dev/null
+            mapfile -t COMPREPLY < <(compgen -W "$_hitl_faults" -- "$cur") ;;
         *)
             COMPREPLY=() ;;
     esac

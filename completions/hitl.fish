@@ -4,6 +4,8 @@
 
 # MAVLink messages compiled into hitl (for --show, --expect).
 set -g __hitl_messages ACTUATOR_OUTPUT_STATUS ATTITUDE ATTITUDE_QUATERNION ATTITUDE_TARGET AUTOPILOT_VERSION BATTERY_STATUS COMMAND_ACK COMMAND_INT COMMAND_LONG DISTANCE_SENSOR ESTIMATOR_STATUS EVENT EXTENDED_SYS_STATE GLOBAL_POSITION_INT GPS_RAW_INT HEARTBEAT HIGHRES_IMU HIL_ACTUATOR_CONTROLS HIL_GPS HIL_SENSOR HIL_STATE_QUATERNION HOME_POSITION LOCAL_POSITION_NED MANUAL_CONTROL MESSAGE_INTERVAL NAMED_VALUE_FLOAT NAMED_VALUE_INT ODOMETRY PARAM_REQUEST_LIST PARAM_REQUEST_READ PARAM_SET PARAM_VALUE PING POSITION_TARGET_LOCAL_NED RC_CHANNELS RC_CHANNELS_OVERRIDE SCALED_IMU SCALED_PRESSURE SERIAL_CONTROL SET_ATTITUDE_TARGET SET_POSITION_TARGET_LOCAL_NED STATUSTEXT SYSTEM_TIME SYS_STATUS TIMESYNC VFR_HUD VIBRATION
+# The faults hitl injects (for --fault).
+set -g __hitl_faults gps-loss gps-jump gps-degrade imu-bias gyro-bias mag-offset baro-drift motor vio-loss hil-drop hil-delay imu-noise imu-stuck imu-clip imu-vibration mag-stuck mag-scale baro-offset baro-stuck gps-drift gps-noise prop-damage payload wind gust turbulence actuators-stale vio-drift vio-jump vio-quality hil-burst hil-jitter hil-reorder hil-dup hil-rate vio-drop vio-delay vio-burst vio-jitter vio-reorder vio-dup vio-rate rangefinder-stuck rangefinder-no-return
 
 function __hitl_commands --description 'The subcommands of a hitl command path'
     switch "$argv[1]"
@@ -53,6 +55,11 @@ end
 
 function __hitl_at --description 'True when the command path is one of the arguments'
     contains -- (__hitl_path) $argv
+end
+
+function __hitl_faults --description 'Fault names for --fault, until the user types its arguments'
+    string match -qr '[:@+]' -- (commandline -ct); and return
+    printf '%s\n' $__hitl_faults
 end
 
 function __hitl_message_rates --description 'MESSAGE= for --expect lists'
@@ -166,7 +173,7 @@ complete -c hitl -n '__hitl_at "sim"' -l no-noise -d 'Noise-free sensors'
 complete -c hitl -n '__hitl_at "sim"' -l rangefinder -d 'Also send DISTANCE_SENSOR from a downward lidar'
 complete -c hitl -n '__hitl_at "sim"' -s t -l trajectory -r -f -a '(__fish_complete_suffix .json)' -d 'Fly this trajectory file'
 complete -c hitl -n '__hitl_at "sim"' -l trajectory-mode -r -f -a 'attitude velocity' -d '-t\'s sticks: velocity'
-complete -c hitl -n '__hitl_at "sim"' -l fault -r -f -d 'Inject a fault at simulated time T for DUR seconds'
+complete -c hitl -n '__hitl_at "sim"' -l fault -r -f -a '(__hitl_faults)' -d 'Inject a fault at simulated time T for DUR seconds'
 complete -c hitl -n '__hitl_at "sim"' -l scenario -r -f -a '(__fish_complete_suffix .json)' -d 'Faults from a JSON file: {"events": [{"at_s": 20, "fault": "gps-loss", "duration_s": 10},...'
 complete -c hitl -n '__hitl_at "sim"' -l tui -d 'The live dashboard'
 complete -c hitl -n '__hitl_at "sim"' -l clients -r -f -d 'UDP port on 127.0.0.1 for local MAVLink clients'

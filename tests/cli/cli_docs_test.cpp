@@ -2,12 +2,14 @@
 // the generators make of it: a change in how CLI11 describes options shows up here first.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <map>
 #include <optional>
 
 #include "cli/command_model.h"
 #include "cli/completions.h"
 #include "cli/config_reference.h"
+#include "cli/help_format.h"
 #include "cli/man_page.h"
 #include "cli/option_words.h"
 #include "cli/value_types.h"
@@ -153,6 +155,38 @@ TEST(CommandModel, ReadsEachKindOfOption) {
   EXPECT_TRUE(name.required);
   EXPECT_EQ(name.kind, ValueKind::Text);
   EXPECT_EQ(option(*find_command(root, {"params", "export"}), "FILE").kind, ValueKind::File);
+}
+
+// Issue 36: --help showed CLI11's type names ("UINT:INT in [1 - 65535]=14560 Excludes: --adb").
+// The value is named as argparse names it, and what it accepts, its default and what it excludes
+// are sentences, as in the man page.
+TEST(HelpText, NamesValuesAsArgparseAndSaysWhatTheyAccept) {
+  SmallApp s;
+  const auto model = read_command_model(s.app);
+  const auto& sim = *find_command(model, {"sim"});
+  EXPECT_EQ(option_metavar(option(sim, "--hil-port")), "HIL_PORT");
+  EXPECT_EQ(option_metavar(option(sim, "-i")), "TARGET_IP");
+  EXPECT_EQ(option_metavar(option(sim, "--trajectory")), "FILE.json");
+  EXPECT_EQ(option_metavar(option(sim, "--protocol-version")), "1.0|2.0");
+  EXPECT_EQ(option_metavar(option(sim, "--trajectory-mode")), "attitude|velocity");
+  EXPECT_EQ(option_value_tag(option(sim, "--px4-sitl")), "[tcp:4560|udp:PORT]");  // bracketed once
+  EXPECT_EQ(option_accepts(option(sim, "--hil-port")), "an integer, 1 to 65535");
+  EXPECT_EQ(option_accepts(option(sim, "--lockstep-timeout")), "a number, greater than 0");
+  const auto notes = option_notes(option(sim, "--hil-port"));
+  EXPECT_EQ(notes, (std::vector<std::string>{"Accepts an integer, 1 to 65535.", "Default: 14560."}));
+
+  SmallApp h;
+  auto* sim_app = h.app.get_subcommand("sim");
+  sim_app->get_option("--px4-sitl")->excludes(sim_app->get_option("--hil-port"));
+  sim_app->get_option("--hil-port")->capture_default_str();  // as hitl's options do
+  HelpFormatter f;
+  std::string text;  // wrapped to the terminal: compared with single spaces
+  for (char c : f.make_option(sim_app->get_option("--hil-port"), false))
+    if (!std::isspace(static_cast<unsigned char>(c)) || (!text.empty() && text.back() != ' ')) text += std::isspace(static_cast<unsigned char>(c)) ? ' ' : c;
+  EXPECT_NE(text.find("--hil-port HIL_PORT"), std::string::npos) << text;
+  EXPECT_NE(text.find("The board's HIL port. Accepts an integer, 1 to 65535. Default: 14560."), std::string::npos) << text;
+  EXPECT_NE(text.find("Not with --px4-sitl."), std::string::npos) << text;
+  for (const char* internal : {"UINT", "INT in", "Excludes:", "=14560"}) EXPECT_EQ(text.find(internal), std::string::npos) << text;
 }
 
 TEST(CommandModel, AcceptedOptionsFollowFallthroughAndDeduplicateHelp) {

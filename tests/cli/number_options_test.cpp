@@ -37,18 +37,24 @@ struct NumberOption {
   bool floating;
 };
 
-/// Options whose type name says "number": FLOAT, S, MS, HZ, PCT, M (floating) and INT, UINT, N.
+/// Options whose --help says they take a number: "Accepts a number" (floating) or "Accepts an
+/// integer", in the notes after the description (wrapped over the option's lines).
 std::vector<NumberOption> number_options(const std::vector<std::string>& command, const std::string& help) {
   std::vector<NumberOption> out;
-  static const std::regex option(R"(^  (?:-\w,)?(--[a-z][a-z0-9-]*)(?:,--[a-z0-9-]+)* (FLOAT|S|MS|HZ|PCT|M|INT|UINT|N)\b)");
+  std::vector<std::string> blocks;  // an option's lines, joined
   std::istringstream in(help);
   std::string line;
-  std::smatch m;
-  while (std::getline(in, line))
-    if (std::regex_search(line, m, option)) {
-      const std::string type = m[2];
-      out.push_back({command, m[1], !(type == "INT" || type == "UINT" || type == "N")});
-    }
+  while (std::getline(in, line)) {
+    if (line.rfind("  -", 0) == 0) blocks.push_back(line);
+    else if (!blocks.empty() && line.rfind("    ", 0) == 0) blocks.back() += " " + line;
+    else if (line.rfind("  ", 0) != 0) blocks.emplace_back();  // a heading or a blank line ends an option
+  }
+  static const std::regex name(R"(^  (?:-\w, )?(--[a-z][a-z0-9-]*))");
+  static const std::regex accepts(R"(Accepts\s+(a\s+number|an\s+integer))");
+  std::smatch n, a;
+  for (const auto& b : blocks)
+    if (std::regex_search(b, n, name) && std::regex_search(b, a, accepts))
+      out.push_back({command, n[1], a[1].str().find("number") != std::string::npos});
   return out;
 }
 

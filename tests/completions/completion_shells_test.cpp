@@ -107,6 +107,16 @@ TEST_F(BashCompletion, MessageNames) {
   for (const char* name : {"HIL_SENSOR", "HIL_GPS", "HIL_ACTUATOR_CONTROLS", "ODOMETRY", "STATUSTEXT"}) EXPECT_THAT(all, Contains(name));
 }
 
+// Issue 36: completion did not know fault names. The name completes; its arguments are the user's.
+TEST_F(BashCompletion, FaultNames) {
+  EXPECT_THAT(complete({"hitl", "sim", "--fault", "gps-l"}), ElementsAre("gps-loss"));
+  EXPECT_THAT(complete({"hitl", "sim", "--fault", "mot"}), Contains("motor"));
+  const auto all = complete({"hitl", "sim", "--fault", ""});
+  for (const char* name : {"gps-loss", "motor", "prop-damage", "imu-vibration", "baro-stuck"}) EXPECT_THAT(all, Contains(name));
+  EXPECT_THAT(complete({"hitl", "sim", "--fault", "motor:2"}), ElementsAre());
+  EXPECT_THAT(complete({"hitl", "sim", "--fault", "gps-loss@1"}), ElementsAre());
+}
+
 TEST_F(BashCompletion, FilesOfTheRightKind) {
   const std::string d = *files_ + "/";
   // -t FILE.json: JSON files and directories, not other files.
@@ -134,6 +144,8 @@ TEST(FishCompletion, ParsesAndCompletesForReal) {
   EXPECT_THAT(complete("hitl params s"), UnorderedElementsAre("set", "show"));
   EXPECT_THAT(complete("hitl sim --protocol-version "), UnorderedElementsAre("1.0", "2.0"));
   EXPECT_THAT(complete("hitl inspect --show HEARTB"), ElementsAre("HEARTBEAT"));
+  EXPECT_THAT(complete("hitl sim --fault gps-l"), ElementsAre("gps-loss"));
+  EXPECT_THAT(complete("hitl sim --fault motor:"), ElementsAre());
   EXPECT_THAT(complete("hitl params show --con"), Contains("--connect"));
   EXPECT_THAT(complete("hitl --json sim --traj"), Contains("--trajectory"));
 }
@@ -155,7 +167,7 @@ TEST(ZshCompletion, ParsesAndRegistersWithCompinit) {
   EXPECT_NE(r.out.find("_hitl: function"), std::string::npos) << r.out << r.err;
   const auto text = test::read_text(script);
   for (const char* part : {"_hitl_cmd_params_show()", "_hitl_cmd_fly_trajectory()", "--protocol-version=[MAVLink protocol version]:TEXT:(1.0 2.0)'",
-                           "_files -g \"*.json\"", "(1.0 2.0)", "_hitl_messages", "HIL_ACTUATOR_CONTROLS"})
+                           "_files -g \"*.json\"", "(1.0 2.0)", "_hitl_messages", "HIL_ACTUATOR_CONTROLS", ":_hitl_faults", "names=(gps-loss"})
     EXPECT_NE(text.find(part), std::string::npos) << part;
 }
 

@@ -88,7 +88,7 @@ TEST(ManPage, ManShowsEveryCommandAsText) {
                                     test::source_path("docs/hitl.1")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
-  for (const char* text : {"hitl sim [OPTIONS]", "hitl params show [OPTIONS] [PATTERN]", "--protocol-version TEXT",
+  for (const char* text : {"hitl sim [OPTIONS]", "hitl params show [OPTIONS] [PATTERN]", "--protocol-version 1.0|2.0",
                            "Default: 14560.", "hitl inspect --port 14570 --duration 5 --expect ODOMETRY=250",
                            "EXIT STATUS", "CONFIGURATION FILE"})
     EXPECT_NE(r.out.find(text), std::string::npos) << text << " not in:\n" << r.out.substr(0, 3000);
