@@ -107,6 +107,47 @@ export HITL_HIL_PORT="$hil_port" HITL_HIL_REMOTE_PORT="$hil_remote_port"
 export HITL_ONBOARD_PORT="$onboard_port" HITL_ONBOARD_REMOTE_PORT="$onboard_remote_port"
 export HITL_GCS_PORT="$gcs_port" HITL_GCS_REMOTE_PORT="$gcs_remote_port"
 
+# PX4's clock without lockstep is the host's CLOCK_MONOTONIC, and its IMU integration (VehicleIMU)
+# takes the first sample as spanning from time 0. Below 2^32 us of host uptime (71.6 min) its
+# integrator accepts that as one sample minutes long and EKF2 stalls on it ("ekf2 missing data"
+# at arming); above, the integrator's DT_MAX check discards it. So on a host up less than two hours
+# PX4 runs in a time namespace whose clock starts at two hours: the script's own process joins it
+# (nsenter --time, then exec: PX4 keeps this PID and gets its signals).
+min_clock_s=7200
+time_namespace=()
+uptime_s="$(cut -d. -f1 /proc/uptime)"
+if [ "$uptime_s" -lt "$min_clock_s" ]; then
+	offset_s=$((min_clock_s - uptime_s))
+	for user_ns in "" "--user --map-root-user"; do
+		# The namespace's first process (a sleep, detached: not a child of PX4) holds it until PX4 is in.
+		# shellcheck disable=SC2086 # $user_ns is empty or two options
+		holder="$( (unshare $user_ns --time --monotonic "$offset_s" --boottime "$offset_s" --fork sleep 10 \
+			</dev/null >/dev/null 2>&1 & echo $!))"
+		clock_pid=""
+		for _ in $(seq 1 40); do
+			clock_pid="$(pgrep -P "$holder" 2>/dev/null || true)"
+			[ -n "$clock_pid" ] || ! kill -0 "$holder" 2>/dev/null && break
+			sleep 0.05
+		done
+		if [ -n "$clock_pid" ]; then
+			if [ -z "$user_ns" ]; then
+				time_namespace=(nsenter --time --target "$clock_pid" --)
+			else
+				time_namespace=(nsenter --user --preserve-credentials --time --target "$clock_pid" --)
+			fi
+			"${time_namespace[@]}" true 2>/dev/null && break
+			time_namespace=()
+		fi
+		kill "$holder" 2>/dev/null || true
+	done
+	if [ ${#time_namespace[@]} -gt 0 ]; then
+		echo "run-hitl-sitl: the host has been up ${uptime_s} s: PX4's clock starts at ${min_clock_s} s (a time namespace)" >&2
+	else
+		echo "run-hitl-sitl: warning: the host has been up ${uptime_s} s (< 4295 s) and no time namespace can be made here" \
+			"(unshare --time): EKF2 may stall on PX4's first IMU sample until the host has been up 72 minutes" >&2
+	fi
+fi
+
 cd "$workdir"
 # shellcheck disable=SC2086 # $daemon is empty or -d
-exec "$px4_build/bin/px4" $daemon -i "$instance" -w "$workdir" -s "$here/rcS.hitl" "$px4_build/etc"
+exec "${time_namespace[@]}" "$px4_build/bin/px4" $daemon -i "$instance" -w "$workdir" -s "$here/rcS.hitl" "$px4_build/etc"

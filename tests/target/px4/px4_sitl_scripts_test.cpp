@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tests/support/process.h"
+#include "tests/support/tools.h"
 
 namespace hitl::test {
 namespace {
@@ -211,7 +212,8 @@ FakeBuild fake_build(bool with_dsp_hitl = true) {
   FakeBuild b{fs::path(temp_dir()) / "build", {}};
   b.record = b.dir.parent_path() / "px4-started.txt";
   write_file(b.dir / "bin" / "px4",
-             "#!/bin/sh\n{ echo \"args $*\"; echo \"cwd $(pwd)\"; env | grep '^HITL_' | sort; } > '" + b.record.string() + "'\n",
+             "#!/bin/sh\n{ echo \"args $*\"; echo \"cwd $(pwd)\"; echo \"pid $$\"; echo \"uptime $(cut -d. -f1 /proc/uptime)\"; "
+             "env | grep '^HITL_' | sort; } > '" + b.record.string() + "'\n",
              true);
   if (with_dsp_hitl) write_file(b.dir / "bin" / "px4-dsp_hitl", "", true);
   fs::create_directories(b.dir / "etc" / "init.d");
@@ -271,6 +273,50 @@ TEST(RunHitlSitl, RefusesWhatCannotWork) {
     EXPECT_NE(r.err.find(c.message), std::string::npos) << "expected '" << c.message << "' in: " << r.err;
     EXPECT_FALSE(fs::exists(good.record)) << "PX4 started despite: " << c.message;
   }
+}
+
+// Issue 38 (5b): PX4 without lockstep reads the host's CLOCK_MONOTONIC, and below 2^32 us of uptime
+// its IMU integration took the first sample as minutes long, stalling EKF2. On a host up less than
+// two hours the script runs PX4 with its clock from 7200 s, in the script's own process (PX4 gets
+// the signals sent to it). Made to happen here by running the script where the clock reads 1000 s.
+TEST(RunHitlSitl, StartsPx4WithItsClockPastTheIntegratorsLimitOnAFreshHost) {
+  if (find_program("unshare").empty() || find_program("nsenter").empty()) GTEST_SKIP() << "no unshare/nsenter (util-linux)";
+  const std::string offset = std::to_string(1000 - std::stol(read_text("/proc/uptime")));
+  // A namespace where the clock reads 1000 s: as root, or in a user namespace as the script falls back to.
+  std::vector<std::string> fresh_host;
+  for (const std::vector<std::string>& user_ns : {std::vector<std::string>{}, {"--user", "--map-root-user"}}) {
+    std::vector<std::string> cmd = {find_program("unshare")};
+    cmd.insert(cmd.end(), user_ns.begin(), user_ns.end());
+    cmd.insert(cmd.end(), {"--time", "--monotonic", offset, "--boottime", offset, "--fork"});
+    std::vector<std::string> probe = cmd;
+    probe.push_back("true");
+    if (run_program(probe).exit_code == 0) {
+      fresh_host = cmd;
+      break;
+    }
+  }
+  if (fresh_host.empty()) GTEST_SKIP() << "no time namespace can be made on this machine (unshare --time)";
+  const FakeBuild build = fake_build();
+  std::vector<std::string> argv = fresh_host;
+  argv.insert(argv.end(), {"sh", "-c", "echo \"script $$ $(cut -d. -f1 /proc/uptime)\"; exec \"$0\" \"$@\"",
+                           (kSitlDir / "run-hitl-sitl.sh").string(), "--px4-build", build.dir.string(), "--workdir",
+                           (build.dir.parent_path() / "work").string(), "--daemon"});
+  Process p(argv);
+  ASSERT_EQ(p.wait(seconds(30)), 0) << p.err();
+  std::istringstream script_line(p.out());
+  std::string word, script_pid;
+  long script_uptime_s = -1;
+  script_line >> word >> script_pid >> script_uptime_s;
+  EXPECT_LT(script_uptime_s, 1100) << p.out();  // the script saw a fresh host
+  std::string px4_pid;
+  long px4_uptime_s = -1;
+  for (const auto& line : read_lines(build.record)) {
+    if (line.rfind("uptime ", 0) == 0) px4_uptime_s = std::stol(line.substr(7));
+    if (line.rfind("pid ", 0) == 0) px4_pid = line.substr(4);
+  }
+  EXPECT_GE(px4_uptime_s, 7200) << "PX4's clock must start past 2^32 us (4295 s)";
+  EXPECT_EQ(px4_pid, script_pid) << "PX4 must be the script's own process (exec), to get the signals sent to it";
+  EXPECT_NE(p.err().find("PX4's clock starts at 7200 s"), std::string::npos) << p.err();
 }
 
 TEST(RunHitlSitl, HelpNamesEveryOption) {
