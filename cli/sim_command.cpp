@@ -339,6 +339,13 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_option("--seed", c.seed, "Noise and gust seed (runs repeat)")
       ->capture_default_str()
       ->group(model);
+  sub->add_option("--board-timing", c.board_timing,
+                  "Delay the sensors as the board's data path does before PX4 reads them: voxl2 (the HIL split's "
+                  "4 ms IMU and 10 ms mag/baro publishing, dsp_hitl's 4 ms poll: 0-8 ms IMU, 0-14 ms mag/baro; "
+                  "docs/sim.md), or none")
+      ->check(CLI::IsMember({"none", "voxl2"}))
+      ->capture_default_str()
+      ->group(model);
   sub->add_flag("--no-noise", [opt](int64_t) { opt->session.noise = false; },
                 "Noise-free sensors (tests only: PX4 marks repeating values stale and refuses to arm)")
       ->group(model);

@@ -25,7 +25,7 @@ _hitl_options() {
     case "$1" in
         '') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
         'inspect') echo '-h --help --bind --local-port --record --show --follow --tui --allan --spectrum --from --to --duration --count --expect --tolerance --sysid --compid --signing-key --require-signed --port --connect --tlog --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --px4 --px4-param --px4-speed --px4-timeout --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --no-noise --rangefinder -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --report --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'sim') echo '-h --help -i --target-ip --mavlink-addr --hil-port --mavlink-udp-remote-port --local-port --mavlink-udp-local-port --bind --px4-sitl --px4 --px4-param --px4-speed --px4-timeout --sysid --compid --protocol-version --adb --adb-serial --adb-relay --vio-ip --vio-mavlink-addr --vio-port --vio-udp-remote-port --vio-rate --vio-update-rate --no-vio --en-vio-output --speed --duration --lockstep --enable-lockstep --lockstep-timeout --actuator-timeout --realtime --spin-us --vehicle --world --seed --board-timing --no-noise --rangefinder -t --trajectory --trajectory-mode --fault --scenario --tui --clients --gcs --truth-rate --record --report --version --json -v --verbose -q --quiet --dialect --config' ;;
         'target') echo '-h --help --bind --hil-port --gcs-port --vio-port --lockstep --duration --fault --version --json -v --verbose -q --quiet --dialect --config' ;;
         'replay') echo '-h --help -i --target-ip --hil-port --vio-port --local-port --bind --lockstep --lockstep-timeout --record --compare --tolerance --version --json -v --verbose -q --quiet --dialect --config' ;;
         'params') echo '-h --help --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -114,6 +114,7 @@ _hitl_value() {
         'sim|--vehicle') echo 'file' ;;
         'sim|--world') echo 'file' ;;
         'sim|--seed') echo 'text' ;;
+        'sim|--board-timing') echo 'choice none voxl2' ;;
         'sim|-t'|'sim|--trajectory') echo 'file *.json' ;;
         'sim|--trajectory-mode') echo 'choice attitude velocity' ;;
         'sim|--fault') echo 'faults' ;;

@@ -23,6 +23,11 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
   s.model = std::move(mc.value());
   s.sensors.emplace(vehicle, config.world, config.seed,
                     config.noise ? config.sensor_units : sensors::without_noise(config.sensor_units));
+  if (config.board_timing != "none") {
+    const auto timing = sensors::data_path_timing_model(config.board_timing);
+    if (!timing) return Error::usage("--board-timing: unknown model '" + config.board_timing + "' (none, voxl2)");
+    s.sensors->set_data_path_timing(*timing, config.seed);
+  }
   for (const auto& f : config.faults) {  // a sensor unit's fault acts on its unit: refused while it is off
     if (f.kind != faults::FaultKind::SensorUnit) continue;
     if (const auto off = sensors::unit_off_for_fault(config.sensor_units, f.unit_fault); !off.empty())

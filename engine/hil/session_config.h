@@ -83,6 +83,9 @@ struct SessionConfig {
   sensors::UnitConfigs sensor_units;      ///< the sensor units (--vehicle FILE's sensors.<name>, --<name>): off by default
   model::WorldConfig world;               ///< --world FILE
   uint64_t seed = 1;                      ///< --seed
+  /// --board-timing: the board's data path delays on the sensors (sensors/data_path_timing.h);
+  /// "none" sends each sample as it is taken.
+  std::string board_timing = "none";
   bool noise = true;                      ///< --no-noise
   std::string record_path;                ///< --record FILE.tlog: everything sent and received
 

@@ -13,6 +13,7 @@
 #include "engine/hil/link_faults.h"
 #include "engine/hil/data_paths.h"
 #include "engine/hil/loop_latency.h"
+#include "engine/sensors/data_path_timing.h"
 
 namespace hitl::hil {
 
@@ -63,6 +64,9 @@ struct SessionSnapshot {
   // the IMU's full scale (sensors.imu.*_range): samples clipped
   uint64_t imu_accel_saturated = 0;
   uint64_t imu_gyro_saturated = 0;
+  /// --board-timing: the model's name ("" when none) and the delays it applied (sensors/data_path_timing.h).
+  std::string board_timing;
+  sensors::DataPathTimingFigures board_timing_figures;
   // touchdowns (model::TouchdownMonitor)
   uint64_t touchdowns = 0;
   double max_rebound_m = 0;

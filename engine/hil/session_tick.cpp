@@ -42,6 +42,7 @@ Status Session::Impl::step(EventSink& events) {
   // Sensors due at this time, with the active sensor faults.
   auto frame = sensors->sample_due(state, fault_schedule.active().units);
   sensor_faults->apply(fault_schedule.active(), sim_time_s(), frame, state.rotor_speed_rad_s);
+  sensors->deliver(frame, state.time_s);  // --board-timing: as late as the board's path reads them
   say_imu_saturated(events);
   // Messages, flushed as one datagram to the flight stack; then VIO and truth.
   const double sent_s = monotonic_s();

@@ -60,6 +60,10 @@ SessionSnapshot make_snapshot(const SnapshotSources& in) {
   s.lockstep_foreign_clock = actuators.counters().foreign_clock;
   s.imu_accel_saturated = in.sensors.imu().saturation().accel;
   s.imu_gyro_saturated = in.sensors.imu().saturation().gyro;
+  if (const auto& timing = in.sensors.data_path_timing()) {
+    s.board_timing = in.config.board_timing;
+    s.board_timing_figures = timing->figures();
+  }
   const auto& td = in.touchdowns.stats();
   s.touchdowns = td.touchdowns;
   s.max_rebound_m = td.max_rebound_m;

@@ -63,6 +63,16 @@ nlohmann::json snapshot_json(const SessionSnapshot& s, bool final_summary) {
                    {"late_answers", s.lockstep_late_answers},
                    {"foreign_clock", s.lockstep_foreign_clock}};
   j["imu_saturated"] = {{"accel", s.imu_accel_saturated}, {"gyro", s.imu_gyro_saturated}};
+  if (!s.board_timing.empty()) {
+    const auto& f = s.board_timing_figures;
+    j["board_timing"] = {{"model", s.board_timing},
+                         {"imu_samples", f.imu_samples},
+                         {"imu_delay_mean_ms", f.imu_delay_mean_s * 1e3},
+                         {"imu_delay_max_ms", f.imu_delay_max_s * 1e3},
+                         {"mag_baro_samples", f.mag_baro_samples},
+                         {"mag_baro_delay_mean_ms", f.mag_baro_delay_mean_s * 1e3},
+                         {"mag_baro_delay_max_ms", f.mag_baro_delay_max_s * 1e3}};
+  }
   j["landing"] = {{"touchdowns", s.touchdowns},
                   {"max_rebound_m", s.max_rebound_m},
                   {"max_touchdown_speed_m_s", s.max_touchdown_speed_m_s},

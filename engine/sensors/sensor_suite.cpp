@@ -35,6 +35,7 @@ void SensorSuite::reset() {
   gps_.reset();
   scheduler_.reset();
   units_.reset();
+  if (data_path_) data_path_->reset();
 }
 
 }  // namespace hitl::sensors

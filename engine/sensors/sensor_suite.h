@@ -11,25 +11,17 @@
 #include "engine/model/vehicle_state.h"
 #include "engine/model/world_config.h"
 #include "engine/sensors/barometer.h"
+#include "engine/sensors/data_path_timing.h"
 #include "engine/sensors/geodesy.h"
 #include "engine/sensors/gps.h"
 #include "engine/sensors/imu.h"
 #include "engine/sensors/magnetometer.h"
 #include "engine/sensors/samples.h"
 #include "engine/sensors/scheduler.h"
+#include "engine/sensors/sensor_frame.h"
 #include "engine/sensors/unit_set.h"
 
 namespace hitl::sensors {
-
-/// The samples taken after one step: only the sensors that were due; truth always.
-struct SensorFrame {
-  std::optional<ImuSample> imu;
-  std::optional<MagSample> mag;
-  std::optional<BaroSample> baro;
-  std::optional<GpsSample> gps;
-  UnitSamples units;  ///< the enabled units' samples that were due, with their faults
-  GroundTruth truth;
-};
 
 class SensorSuite {
  public:
@@ -40,6 +32,14 @@ class SensorSuite {
   SensorFrame sample_due(const model::VehicleState& state, const UnitFaults& unit_faults = {});
   /// Noise processes, biases and schedule back to their start (a reset run repeats).
   void reset();
+  /// From now on, deliver() delays the samples as the board's data path does.
+  void set_data_path_timing(const DataPathTimingConfig& config, std::uint64_t seed) { data_path_.emplace(config, seed); }
+  /// `frame` as the flight stack reads it at `now_s`: through the board's data path when one is
+  /// set (after the sensor faults: they act at the sensor), else unchanged.
+  void deliver(SensorFrame& frame, double now_s) {
+    if (data_path_) data_path_->apply(frame, now_s);
+  }
+  const std::optional<DataPathTiming>& data_path_timing() const { return data_path_; }
 
   Imu& imu() { return imu_; }
   const Imu& imu() const { return imu_; }
@@ -57,6 +57,7 @@ class SensorSuite {
   LocalGeodesy geodesy_;
   SensorScheduler scheduler_;
   UnitSet units_;
+  std::optional<DataPathTiming> data_path_;
 };
 
 }  // namespace hitl::sensors
