@@ -223,7 +223,7 @@ int finish_campaign(const GlobalOptions& g, const campaign::Campaign& c, const s
     }
   }
   // The page last: it draws the history with this run in it.
-  campaign::PageRun page{f.label, f.started_utc, kVersion, f.wall_s, f.stopped, f.collected, {}};
+  campaign::PageRun page{f.label, f.started_utc, kVersion, f.wall_s, f.stopped, f.collected};
   if (history_failed) page.no_history_reason = "this run could not be added to the history " + f.history;
   const auto page_started = std::chrono::steady_clock::now();
   const std::string page_path = (std::filesystem::path(f.out_dir) / campaign::kPageFile).string();

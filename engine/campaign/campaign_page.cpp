@@ -169,6 +169,7 @@ td,th{border:1px solid #ccc;padding:3px 8px;text-align:left;vertical-align:top}t
 .passed{background:#d4f4d4}.failed{background:#f8c9c9}.error{background:#fbd9a8}.missing{background:#e4e4e4}
 a.passed,span.passed{background:#8fd98f}a.failed,span.failed{background:#e66a6a}a.error,span.error{background:#f2a23c}a.missing,span.missing{background:#bdbdbd}
 ul.broken{margin:3px 0 0;padding-left:16px;font-size:11px;color:#700}
+.wide{overflow-x:auto}#distribution td,#distribution tr th:first-child{white-space:nowrap}#distribution th{min-width:80px}#distribution th small{font-weight:normal}
 #distribution td.broken,#trends tr.regression td{background:#f8c9c9}
 figure{margin:14px 0;border:1px solid #ddd;padding:6px}figure .graph{width:100%;height:260px}
 figcaption{font-size:12px;color:#555}.values{font-size:12px;min-height:18px;margin:2px 0 4px}
@@ -208,7 +209,7 @@ std::string matrix_html(const PageInput& in, const Cells& cells) {
   h << "<h2>The matrix</h2>\n<p class=\"how\">A row per trajectory, a column per fault case; in each cell its flights, each "
        "a link to its report (else its summary, else its log), coloured by outcome: green passed, red failed (a criterion "
        "broken), orange error (crashed, killed, past its time limit), grey not flown. Under them, what each broke.</p>\n";
-  h << "<table id=\"matrix\">\n<tr><th></th>";
+  h << "<div class=\"wide\"><table id=\"matrix\">\n<tr><th></th>";
   for (const auto& fc : c.fault_cases) h << "<th>" << html_escaped(fc.name) << "</th>";
   h << "</tr>\n";
   for (std::size_t row = 0; row < cells.rows; ++row) {
@@ -245,7 +246,7 @@ std::string matrix_html(const PageInput& in, const Cells& cells) {
     }
     h << "</tr>\n";
   }
-  h << "</table>\n";
+  h << "</table></div>\n";
   return h.str();
 }
 
@@ -260,7 +261,7 @@ std::string distribution_html(const PageInput& in, const Cells& cells, const std
     << "), each criterion's figure: min / median / max for a number; for a true/false or text figure and an expectation, "
        "how many flights broke it (a plot cannot show those). Red: a flight of the cell broke it. A cell's flights that "
        "erred or were not flown have no figures.</p>\n";
-  h << "<table id=\"distribution\">\n<tr><th>cell</th>";
+  h << "<div class=\"wide\"><table id=\"distribution\">\n<tr><th>cell</th>";
   for (const auto& k : criteria)
     h << "<th>" << html_escaped(k.name) << "<br><small>" << html_escaped(k.figure + " " + k.limit_text) << "</small></th>";
   h << "</tr>\n";
@@ -281,7 +282,7 @@ std::string distribution_html(const PageInput& in, const Cells& cells, const std
     }
     h << "</tr>\n";
   }
-  h << "</table>\n";
+  h << "</table></div>\n";
   for (std::size_t k = 0; k < criteria.size(); ++k) {
     if (!criteria[k].limit) continue;
     bool any = false;

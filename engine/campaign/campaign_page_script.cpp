@@ -16,7 +16,7 @@ const char* const kCampaignPageScript = R"hitljs((function () {
   function categories(names, separator) {
     var longest = 1;
     names.forEach(function (n) { n.split(separator).forEach(function (p) { longest = Math.max(longest, p.length); }); });
-    var labelPx = longest * 7 + 12;
+    var labelPx = Math.ceil(longest * 6.5) + 10;  // 11 px labels
     return {
       ticker: function (min, max, pixels) {
         var first = Math.max(0, Math.ceil(min)), last = Math.min(names.length - 1, Math.floor(max)), ticks = [];
@@ -25,6 +25,8 @@ const char* const kCampaignPageScript = R"hitljs((function () {
         return ticks;
       },
       valueFormatter: function (x) { return names[Math.round(x)] || ''; },
+      axisLabelWidth: labelPx,
+      axisLabelFontSize: 11,
       drawGrid: false
     };
   }
