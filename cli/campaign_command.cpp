@@ -473,7 +473,7 @@ int run_campaign_file(const GlobalOptions& options, const CampaignFileRun& run) 
 }
 
 void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state) {
-  auto* sub = app.add_subcommand("campaign", "Fly a matrix of flights (trajectories x faults x seeds) unattended: results, JUnit XML");
+  auto* sub = app.add_subcommand("campaign", "Fly a matrix of flights (trajectories x faults x seeds) unattended: results, JUnit XML, an HTML page");
   sub->require_subcommand(1);
   sub->footer("The campaign file: docs/campaigns.md.");
   auto o = std::make_shared<CampaignRunOptions>();
