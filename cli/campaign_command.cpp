@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <cstdio>
@@ -16,10 +17,13 @@
 #include <thread>
 
 #include "cli/board_stack.h"
+#include "cli/campaign_command.h"
 #include "cli/commands.h"
 #include "cli/number_check.h"
 #include "cli/parse_errors.h"
+#include "cli/version.h"
 #include "engine/campaign/campaign_file.h"
+#include "engine/campaign/campaign_page.h"
 #include "engine/campaign/campaign_run.h"
 #include "engine/campaign/flight.h"
 #include "engine/campaign/flight_run.h"
@@ -200,6 +204,7 @@ struct Finish {
   std::string started_utc;
   double wall_s = 0;
   bool stopped = false;
+  bool collected = false;  ///< by collect: wall_s is the flights' own times added up
 };
 
 /// summary.json and junit.xml into the folder, the run into the history, the summary line (or
@@ -217,6 +222,21 @@ int finish_campaign(const GlobalOptions& g, const campaign::Campaign& c, const s
       history_failed = true;
     }
   }
+  // The page last: it draws the history with this run in it.
+  campaign::PageRun page{f.label, f.started_utc, kVersion, f.wall_s, f.stopped, f.collected};
+  if (history_failed) page.no_history_reason = "this run could not be added to the history " + f.history;
+  const auto page_started = std::chrono::steady_clock::now();
+  const std::string page_path = (std::filesystem::path(f.out_dir) / campaign::kPageFile).string();
+  const auto page_written = campaign::write_campaign_page(f.out_dir, c, flights, results, page, history_failed ? "" : f.history);
+  if (!page_written) log_error("campaign", page_written.error());
+  else {
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(page_path, ec);
+    char line[160];
+    std::snprintf(line, sizeof line, "hitl campaign: %s: %.0f kB, written in %.0f ms", page_path.c_str(), ec ? 0.0 : bytes / 1e3,
+                  std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - page_started).count());
+    if (g.verbosity > 0) log_info(g, line);
+  }
   if (g.json) {
     print_json_line(campaign::campaign_summary_json(c, flights, results, f.wall_s, f.stopped));
   } else {
@@ -224,11 +244,12 @@ int finish_campaign(const GlobalOptions& g, const campaign::Campaign& c, const s
     std::snprintf(line, sizeof line, "campaign %s: %zu flights: %zu passed, %zu failed, %zu errors, %zu not flown; %.1f s", c.name.c_str(),
                   t.flights, t.passed, t.failed, t.errors, t.missing, f.wall_s);
     std::cout << line << (f.stopped ? " (stopped: --resume flies the rest)" : "") << '\n'
-              << "results: " << f.out_dir << "/ (" << campaign::kCampaignSummaryFile << ", " << campaign::kJunitFile
-              << ", flights/<id>/)\n";
+              << "results: " << f.out_dir << "/ (" << campaign::kCampaignSummaryFile << ", " << campaign::kJunitFile << ", "
+              << campaign::kPageFile << ", flights/<id>/)\n";
     if (!f.history.empty() && !history_failed) std::cout << "history: " << f.history << " (hitl campaign history)\n";
+    if (page_written) std::cout << "page: " << page_path << " (open it in a browser)\n";
   }
-  return t.passed == t.flights && !history_failed ? kExitOk : kExitFailed;
+  return t.passed == t.flights && !history_failed && page_written ? kExitOk : kExitFailed;
 }
 
 /// The campaign file, read with the fault catalogue's "did you mean".
@@ -299,7 +320,7 @@ int run_collect_command(const GlobalOptions& g, const CampaignCollectOptions& o)
   for (const auto& r : results)
     if (r) wall_s += r->wall_s;
   log_info(g, "hitl campaign: " + c->name + ": collecting " + std::to_string(flights.size()) + " flights' results from " + out_dir);
-  return finish_campaign(g, *c, flights, results, {out_dir, *history, o.label, utc_now(), wall_s, false});
+  return finish_campaign(g, *c, flights, results, {out_dir, *history, o.label, utc_now(), wall_s, false, true});
 }
 
 struct CampaignMatrixOptions {
@@ -441,8 +462,18 @@ int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o)
 
 }  // namespace
 
+int run_campaign_file(const GlobalOptions& options, const CampaignFileRun& run) {
+  CampaignRunOptions o;
+  o.file = run.file;
+  o.jobs = run.jobs;
+  o.out_dir = run.out_dir;
+  o.history = run.history;
+  o.label = run.label;
+  return run_campaign_command(options, o);
+}
+
 void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state) {
-  auto* sub = app.add_subcommand("campaign", "Fly a matrix of flights (trajectories x faults x seeds) unattended: results, JUnit XML");
+  auto* sub = app.add_subcommand("campaign", "Fly a matrix of flights (trajectories x faults x seeds) unattended: results, JUnit XML, an HTML page");
   sub->require_subcommand(1);
   sub->footer("The campaign file: docs/campaigns.md.");
   auto o = std::make_shared<CampaignRunOptions>();

@@ -3,6 +3,8 @@
 // square, land), then a short report: tracking error, rates achieved, the board's estimate
 // against the simulator's truth. No board, no network, no configuration. Ctrl-C stops it all.
 // --tui: the sim dashboard (docs/tui.md) on the flight, in real time unless --speed says otherwise.
+// --campaign: instead, the small campaign of docs/examples/campaigns/small.toml (4 hovers, with and
+// without a GPS loss) flown as `hitl campaign run` flies it, its page (index.html) last.
 #include <unistd.h>
 #include <sys/stat.h>
 
@@ -12,10 +14,12 @@
 #include <cstring>
 #include <filesystem>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <mutex>
 #include <thread>
 
+#include "cli/campaign_command.h"
 #include "cli/commands.h"
 #include "cli/number_check.h"
 #include "cli/report_output.h"
@@ -32,6 +36,8 @@
 namespace hitl::cli {
 
 extern const char* const kSquareTrajectory;  // docs/examples/square.json, compiled in
+extern const char* const kSmallCampaign;     // docs/examples/campaigns/small.toml, compiled in
+extern const char* const kHoverTrajectory;   // docs/examples/hover.json (small.toml's trajectory), compiled in
 
 namespace {
 
@@ -45,6 +51,7 @@ struct DemoOptions {
   std::string report_path;      ///< --report (empty: demo.html beside the recording)
   bool no_report = false;       ///< --no-report
   std::string px4_dir;          ///< --px4 DIR: real PX4 SITL, started by hitl, instead of the emulated board
+  bool campaign = false;        ///< --campaign: the small campaign and its page instead of the one flight
 };
 
 /// --px4 without --speed: lockstep at this factor (a 2-core machine keeps PX4's estimator up to ~8).
@@ -157,7 +164,55 @@ double per_sim_second(const std::map<std::string, hil::StreamCount>& counts, con
   return it == counts.end() || sim_s <= 0 ? 0.0 : static_cast<double>(it->second.count) / sim_s;
 }
 
+/// `text` into `path`; an Error naming it when it cannot be written.
+Status write_file(const std::filesystem::path& path, const char* text) {
+  std::ofstream out(path, std::ios::trunc);
+  out << text;
+  if (!out) return Error::unavailable("cannot write " + path.string() + ": " + std::strerror(errno));
+  return Ok{};
+}
+
+/// hitl demo --campaign: small.toml and its hover written into a new demo folder (as they lie in
+/// docs/examples, so the flights' ids are the docs' ones), flown -j cores into DIR/results with a
+/// history of its own (DIR/history.sqlite), the page's path last.
+int run_demo_campaign(const GlobalOptions& g) {
+  namespace fs = std::filesystem;
+  auto dir = demo_directory();
+  if (!dir) return log_error("demo", dir.error());
+  if (const std::size_t removed = remove_old_demo_folders(*dir); removed > 0)
+    log_info(g, "hitl demo: removed " + std::to_string(removed) + " older demo folder" + (removed == 1 ? "" : "s") + " under " +
+                    fs::temp_directory_path().string() + " (the newest " + std::to_string(kDemoFoldersKept) + " are kept)");
+  const fs::path root(*dir);
+  std::error_code ec;
+  fs::create_directories(root / "campaigns", ec);
+  if (ec) return log_error("demo", Error::unavailable("cannot make " + (root / "campaigns").string() + ": " + ec.message()));
+  const fs::path file = root / "campaigns" / "small.toml";
+  for (auto [path, text] : {std::pair{root / "hover.json", kHoverTrajectory}, std::pair{file, kSmallCampaign}})
+    if (auto ok = write_file(path, text); !ok) return log_error("demo", ok.error());
+  CampaignFileRun run;
+  run.file = file.string();
+  run.jobs = std::max(1u, std::thread::hardware_concurrency());
+  run.out_dir = (root / "results").string();
+  run.history = (root / "history.sqlite").string();
+  run.label = "demo";
+  const std::string page = (root / "results" / "index.html").string();
+  log_info(g, "hitl demo: a small campaign (docs/examples/campaigns/small.toml: a hover with and without a GPS loss, 2 seeds: "
+              "4 flights) against the emulated board, " + std::to_string(run.jobs) + " at a time, into " + run.out_dir +
+              " (Ctrl-C stops it)");
+  if (g.json)
+    print_json_line({{"type", "status"}, {"event", "campaign"}, {"campaign", run.file}, {"out", run.out_dir}, {"page", page}});
+  const int code = run_campaign_file(g, run);
+  if (!g.json && fs::exists(page, ec)) {
+    std::cout << "Next: docs/campaigns.md (a campaign file of your own, JUnit for CI, the history). Fly it again into the "
+                 "same history, and its page draws the trend of each criterion:\n  hitl campaign run "
+              << run.file << " --out " << (root / "again").string() << " --history " << run.history << "\nThe campaign's page:\n"
+              << page << '\n' << std::flush;
+  }
+  return code;
+}
+
 int run_demo(const GlobalOptions& g, DemoOptions o) {
+  if (o.campaign) return run_demo_campaign(g);
   if (o.tui) {
     if (auto usable = tui::terminal_usable(); !usable) {
       std::cerr << "hitl demo: --tui: " << usable.error().message << "; showing the status lines instead\n";
@@ -394,7 +449,15 @@ void add_demo_command(CLI::App& app, GlobalOptions& options, RunState& state) {
   sub->add_flag("--tui", o->tui,
                 "Watch it on the sim dashboard (docs/tui.md), in real time unless --speed is given; the report "
                 "follows when the flight ends or on q. Without a terminal: the status lines");
-  sub->footer("Exit: 0 when the trajectory was flown and the vehicle landed and disarmed, 1 otherwise.");
+  auto* campaign = sub->add_flag("--campaign",
+                                 o->campaign,
+                                 "Instead of the one flight: a small campaign (docs/examples/campaigns/small.toml, built in: 4 "
+                                 "hovers, with and without a GPS loss) flown as hitl campaign run does, into a new folder "
+                                 "under $TMPDIR; its page (index.html) is the last line printed");
+  for (const char* other : {"--trajectory", "--speed", "--trajectory-mode", "--record", "--report", "--no-report", "--px4", "--tui"})
+    campaign->excludes(sub->get_option(other));
+  sub->footer("Exit: 0 when the trajectory was flown and the vehicle landed and disarmed (--campaign: every flight passed), 1 "
+              "otherwise.");
   sub->callback([&options, &state, o, speed]() {
     o->speed_given = speed->count() > 0;
     state.exit_code = run_demo(options, *o);

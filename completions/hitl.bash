@@ -53,7 +53,7 @@ _hitl_options() {
         'board status') echo '-h --help --adb --adb-serial --connect -i --target-ip --port --local-port --session-port --sysid --timeout --version --json -v --verbose -q --quiet --dialect --config' ;;
         'board restore') echo '-h --help --adb --adb-serial --keep --params --dry-run -i --target-ip --version --json -v --verbose -q --quiet --dialect --config' ;;
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --queue-ms --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --px4 --tui --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --px4 --tui --campaign --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign run') echo '-h --help -j --jobs --out --only --resume --rerun-failed --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign collect') echo '-h --help --out --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;

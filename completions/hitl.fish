@@ -352,6 +352,7 @@ complete -c hitl -n '__hitl_at "demo"' -l report -r -f -a '(__fish_complete_suff
 complete -c hitl -n '__hitl_at "demo"' -l no-report -d 'No report (and no recording unless --record)'
 complete -c hitl -n '__hitl_at "demo"' -l px4 -r -f -d 'Fly it with real PX4 SITL instead of the emulated board: DIR is a PX4 SITL build folder or...'
 complete -c hitl -n '__hitl_at "demo"' -l tui -d 'Watch it on the sim dashboard'
+complete -c hitl -n '__hitl_at "demo"' -l campaign -d 'Instead of the one flight: a small campaign'
 complete -c hitl -n '__hitl_at "campaign"' -s h -l help -d 'Print this help message and exit'
 complete -c hitl -n '__hitl_at "campaign run"' -s h -l help -d 'Print this help message and exit'
 complete -c hitl -n '__hitl_at "campaign run"' -s j -l jobs -r -f -d 'Flights at a time'

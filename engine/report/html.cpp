@@ -49,6 +49,17 @@ std::string html_escaped(const std::string& text) {
   return out;
 }
 
+std::string script_safe_json(const nlohmann::json& data) {
+  const std::string text = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    if (c == '<') out += "\\u003c";
+    else out += c;
+  }
+  return out;
+}
+
 std::string page_start(const FlightLog& log, const std::string& extra_head) {
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>hitl report: " << html_escaped(log.path)

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/report/flight_log.h"
 #include "engine/report/plots.h"
 
@@ -31,5 +33,9 @@ std::string svg_figure(const Plot& plot, const std::string& svg);
 
 /// Text for HTML (&, <, >, ").
 std::string html_escaped(const std::string& text);
+
+/// JSON text that can sit inside <script type="application/json">: every '<' written as \u003c, so
+/// no text in it ("</script>") ends the element early; invalid UTF-8 replaced.
+std::string script_safe_json(const nlohmann::json& data);
 
 }  // namespace hitl::report

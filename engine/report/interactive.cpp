@@ -43,7 +43,7 @@ nlohmann::json series_json(const PlotSeries& s) {
   return {{"title", s.title}, {"style", style_name(s.style)}, {"t", std::move(t)}, {"y", std::move(y)}};
 }
 
-/// The page's data as JSON that can sit inside <script>: every '<' written as \u003c.
+/// The page's data as JSON that can sit inside <script> (script_safe_json).
 std::string data_json(const FlightLog& log, const std::vector<Plot>& plots) {
   nlohmann::json plot_list = nlohmann::json::array();
   std::string time_label;
@@ -66,14 +66,7 @@ std::string data_json(const FlightLog& log, const std::vector<Plot>& plots) {
                       {"events", std::move(events)},
                       {"faults", std::move(faults)},
                       {"modes", std::move(modes)}};
-  std::string text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    if (c == '<') out += "\\u003c";
-    else out += c;
-  }
-  return out;
+  return script_safe_json(j);
 }
 
 constexpr const char* kInteractiveStyle = R"(figure.time-plot .graph{width:100%;height:300px}

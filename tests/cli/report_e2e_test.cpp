@@ -24,6 +24,7 @@
 #include "engine/mavlink/tlog.h"
 #include "engine/report/flight_log.h"
 #include "engine/report/plots.h"
+#include "tests/support/chromium.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/lockstep_session.h"
 #include "tests/support/process.h"
@@ -41,13 +42,6 @@ std::string read_file(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-std::string unescaped(std::string text) {
-  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{{"&quot;", "\""}, {"&lt;", "<"}, {"&gt;", ">"}, {"&amp;", "&"}}) {
-    for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size()) text.replace(at, from.size(), to);
-  }
-  return text;
 }
 
 struct SeriesClaim {
@@ -113,7 +107,7 @@ std::map<std::string, std::vector<SeriesClaim>> figures_of(const std::string& ht
     const auto id_end = html.find('"', at + open.size());
     const std::string id = html.substr(at + open.size(), id_end - at - open.size());
     const auto data = html.find("data-series=\"", id_end) + 13;
-    const auto claims = nlohmann::json::parse(unescaped(html.substr(data, html.find('"', data) - data)));
+    const auto claims = nlohmann::json::parse(test::html_unescaped(html.substr(data, html.find('"', data) - data)));
     const auto fig_end = html.find("</figure>", at);
     const std::string fig = html.substr(at, fig_end - at);
     at = fig_end;
@@ -202,35 +196,6 @@ std::string screenshot(const std::string& chromium, const std::string& html, con
   if (r.exit_code != 0) return "chromium exit " + std::to_string(r.exit_code) + ": " + r.err;
   if (!std::filesystem::exists(png)) return "chromium wrote no " + png + ": " + r.err;
   return "";
-}
-
-/// What the page's script did in headless Chromium: the page with a probe added (an error and
-/// console.error/warn catcher before every script, and after them `probe_js`, which fills `out`
-/// with what it finds, r being window.hitlReport), its DOM dumped; `out` as JSON (with "errors"),
-/// or {"failure": why}.
-nlohmann::json probe_in_chromium(const std::string& chromium, const std::string& html, const std::string& dir,
-                                 const std::string& probe_js) {
-  std::string page = read_file(html);
-  const std::string catcher = R"(<script>window.hitlErrors=[];window.addEventListener('error',function(e){hitlErrors.push('error: '+e.message)});
-['error','warn'].forEach(function(k){var f=console[k];console[k]=function(){hitlErrors.push(k+': '+Array.prototype.join.call(arguments,' '));f.apply(console,arguments)}});</script>)";
-  const std::string probe = "<script>(function(){var out={errors:hitlErrors};try{var r=window.hitlReport;" + probe_js +
-                            "}catch(e){out.errors.push('probe: '+e)}var pre=document.createElement('pre');pre.id='hitl-probe';"
-                            "pre.textContent=JSON.stringify(out);document.body.appendChild(pre)})();</script>";
-  const auto head = page.find("</head>"), body = page.rfind("</body>");
-  if (head == std::string::npos || body == std::string::npos) return {{"failure", "no </head> or </body> in the page"}};
-  page.insert(body, probe);
-  page.insert(head, catcher);
-  const std::string probed = dir + "/probed.html";
-  std::ofstream(probed) << page;
-  auto r = test::run_program({chromium, "--headless", "--no-sandbox", "--disable-gpu", "--user-data-dir=" + dir + "/profile",
-                              "--window-size=1200,3200", "--dump-dom", "file://" + probed},
-                             180s);
-  if (r.exit_code != 0) return {{"failure", "chromium exit " + std::to_string(r.exit_code) + ": " + r.err}};
-  const std::string open = "<pre id=\"hitl-probe\">";
-  const auto at = r.out.find(open);
-  if (at == std::string::npos) return {{"failure", "no probe in the dumped DOM (the page's script did not run to its end?)"}};
-  const auto start = at + open.size();
-  return nlohmann::json::parse(unescaped(r.out.substr(start, r.out.find("</pre>", start) - start)));
 }
 
 /// Moves the mouse over the middle of the third time plot and reads the time selected in each;
@@ -344,12 +309,12 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   }
 
   // Chromium draws it, and what it draws is not a blank page.
-  const std::string chromium = test::find_program("chromium");
+  std::string why_not;
+  bool required = false;
+  const std::string chromium = test::find_chromium(why_not, required);
   if (chromium.empty()) {
-    // install-deps.sh --test installs Debian's chromium; Ubuntu has it only as a snap, which it leaves out.
-    const bool ubuntu = test::read_text("/etc/os-release").find("\nID=ubuntu") != std::string::npos;
-    if (std::getenv("CI") != nullptr && !ubuntu) FAIL() << "chromium is not installed (scripts/install-deps.sh --test installs it)";
-    GTEST_SKIP() << "chromium is not installed (Debian: scripts/install-deps.sh --test; Ubuntu: a snap, not installed for you)";
+    if (required) FAIL() << why_not;
+    GTEST_SKIP() << why_not;
   }
   const std::string shot = HITL_REPORT_SCREENSHOT;
   std::filesystem::remove(shot);
@@ -363,7 +328,7 @@ TEST(ReportE2E, TheDemosReportRendersInChromiumWithEverySeriesItClaims) {
   std::cout << "screenshot: " << shot << " (" << shot_bytes << " bytes)\n";
 
   // The page's script: no error; zoom one time plot and every time plot's x range follows.
-  const auto probe = probe_in_chromium(chromium, html, dir, kZoomProbe);
+  const auto probe = test::probe_in_chromium(chromium, html, dir, kZoomProbe);
   ASSERT_FALSE(probe.contains("failure")) << probe.dump();
   EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
   const auto data = page_data(page);
@@ -462,7 +427,7 @@ TEST(ReportE2E, SimWithATrajectoryAndReportRecordsBesideThePageAndMarksTheFaults
   // Both windows shaded behind every time plot, and nothing red at 5 s, before them.
   const std::string chromium = test::find_program("chromium");
   if (chromium.empty()) return;  // the demo's test says why
-  const auto probe = probe_in_chromium(chromium, dir + "/flight.html", dir, kShadeProbe);
+  const auto probe = test::probe_in_chromium(chromium, dir + "/flight.html", dir, kShadeProbe);
   ASSERT_FALSE(probe.contains("failure")) << probe.dump();
   EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
   ASSERT_EQ(probe["ids"].size(), data["plots"].size());
