@@ -132,6 +132,10 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
   std::error_code ec;
   std::filesystem::create_directories(options.work_dir, ec);
   if (ec) return Error::unavailable("cannot create PX4's working folder '" + options.work_dir + "': " + ec.message());
+  // Absolute: the child changes into the folder before PX4 starts, and PX4 takes -w from there (a
+  // relative one made PX4 fail, or work in a folder inside the folder, where no report finds its ULog).
+  const std::string work_dir = std::filesystem::absolute(options.work_dir, ec).string();
+  if (ec) return Error::unavailable("cannot name PX4's working folder '" + options.work_dir + "': " + ec.message());
   const int console = ::open(options.console_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (console < 0)
     return Error::unavailable("cannot write PX4's console to '" + options.console_path + "': " + std::strerror(errno));
@@ -159,7 +163,7 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
   for (auto& s : env_strings) envp.push_back(s.data());
   envp.push_back(nullptr);
   std::vector<std::string> args = {build.program, "-d", "-i", std::to_string(options.instance.index), "-w",
-                                   options.work_dir, build.etc_dir};
+                                   work_dir, build.etc_dir};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
