@@ -186,13 +186,17 @@ TEST_F(CampaignFileTest, AnEmptyMatrixIsRefused) {
 }
 
 TEST_F(CampaignFileTest, TheExamplesParse) {
-  for (const char* name : {"regression.toml", "small.toml"}) {
+  for (const char* name : {"regression.toml", "small.toml", "px4-square.toml"}) {
     auto c = load_campaign(std::string(HITL_SOURCE_DIR) + "/docs/examples/campaigns/" + name);
     ASSERT_TRUE(c) << c.error().message;
   }
   auto regression = load_campaign(std::string(HITL_SOURCE_DIR) + "/docs/examples/campaigns/regression.toml");
   ASSERT_TRUE(regression);
   EXPECT_EQ(expand(*regression).size(), 36u);  // 3 trajectories x 4 fault cases x 3 seeds
+  auto px4 = load_campaign(std::string(HITL_SOURCE_DIR) + "/docs/examples/campaigns/px4-square.toml");
+  ASSERT_TRUE(px4);
+  EXPECT_EQ(px4->stack, Stack::Px4);
+  EXPECT_EQ(expand(*px4).size(), 4u);  // square and hover x none and gps-loss, at 5x
 }
 
 TEST_F(CampaignFileTest, CriterionFiguresAreTheSummarysLeaves) {
