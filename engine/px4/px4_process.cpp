@@ -176,7 +176,8 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
     return Error::unavailable(std::string("cannot start PX4: pipe: ") + std::strerror(err));
   }
 
-  // hitl -> a supervisor (a fork of hitl that never execs) -> PX4 in a process group of its own.
+  // hitl -> a supervisor (a fork of hitl that never execs, in a process group of its own) -> PX4 in a
+// process group of its own.
   // PX4 runs its start script in a shell that starts PX4's modules as client processes; killed with
   // PX4 alone (PR_SET_PDEATHSIG reaches only a direct child), that shell went on and started them in
   // the next PX4 of the same instance. The supervisor dies with hitl and then kills PX4's whole
@@ -191,6 +192,10 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
     return Error::unavailable(std::string("cannot start PX4: fork: ") + std::strerror(err));
   }
   if (supervisor == 0) {
+    // A group of its own too (set by both sides of the fork, so that neither order races): a kill
+    // of hitl's process group (a campaign's runner kills a flight past its time limit that way)
+    // must leave the supervisor to see hitl die and kill PX4, not take it along and orphan PX4.
+    ::setpgid(0, 0);
     ::prctl(PR_SET_PDEATHSIG, SIGUSR2);
     if (::getppid() != parent) ::_exit(127);
     // hitl's other descriptors (its sockets) are not the supervisor's to hold.
@@ -240,6 +245,7 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
       ::sigwait(&wanted, &sig);
     }
   }
+  ::setpgid(supervisor, supervisor);
   ::close(console);
   if (null_in >= 0) ::close(null_in);
   ::close(pid_pipe[1]);

@@ -3,7 +3,8 @@
 // saying so. A hover with and without a GPS loss at -j 2, each flight starting its own PX4 (two at
 // once: they must not collide), both pass, PX4's mode change and console failsafe after the loss
 // found by expectations; each flight's folder holds PX4's console and ULog; the history has PX4's
-// version; no PX4 is left behind, neither after the flights nor after a Ctrl-C of the campaign.
+// version; no PX4 is left behind, neither after the flights nor after a Ctrl-C of the campaign nor
+// after a flight killed at its time limit.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -173,6 +174,19 @@ TEST_F(Px4Campaign, CtrlCOfTheCampaignLeavesNoPx4) {
   EXPECT_EQ(processes_naming(out + "/flights/"), 0) << "a PX4 left running after Ctrl-C";
   const auto summary = json::parse(read_text(out + "/summary.json"));
   EXPECT_EQ(summary["stopped"], true);
+}
+
+TEST_F(Px4Campaign, AFlightKilledAtItsTimeLimitTakesItsPx4Along) {
+  // The runner kills a flight past its limit with SIGKILL to the flight's process group: PX4 (in a
+  // group of its own) must die with it, not live on as an orphan.
+  const std::string file = write_campaign(4);
+  const std::string out = dir_ + "/limited";
+  const auto r = run_hitl({"campaign", "run", file, "-j", "2", "--out", out, "--no-history"}, 120s);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("no result within the time limit of 4 s"), std::string::npos) << r.err;
+  const auto until = std::chrono::steady_clock::now() + 10s;
+  while (processes_naming(out + "/flights/") > 0 && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(100ms);
+  EXPECT_EQ(processes_naming(out + "/flights/"), 0) << "a PX4 left running after its flight was killed";
 }
 
 }  // namespace
