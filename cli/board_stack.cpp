@@ -22,7 +22,7 @@ void EmulatedBoardStack::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-campaign::StackFigures EmulatedBoardStack::figures() const {
+campaign::StackFigures EmulatedBoardStack::figures(const hil::SessionSnapshot& /*session*/) const {  // the board's own
   campaign::StackFigures f;
   if (!board_) return f;
   const auto b = board_->snapshot();

@@ -18,7 +18,7 @@ class EmulatedBoardStack : public campaign::FlightStack {
   ~EmulatedBoardStack() override { stop(); }
   Expected<Ports> start() override;
   void stop() override;
-  campaign::StackFigures figures() const override;
+  campaign::StackFigures figures(const hil::SessionSnapshot& session) const override;
 
  private:
   target::Board::Observer& observer_;

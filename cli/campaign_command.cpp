@@ -48,6 +48,7 @@ struct CampaignRunOptions {
   std::string history;  ///< --history FILE (empty: the default, campaign::default_history_path())
   std::string label;    ///< --label TEXT
   bool no_history = false;
+  std::string px4_dir;  ///< --px4 DIR: stack = "px4"'s build, over the file's px4 = "DIR"
 };
 
 struct CampaignHistoryOptions {
@@ -174,7 +175,9 @@ int run_one(const GlobalOptions& g, const campaign::Campaign& c, const std::vect
                                               std::to_string(flights.size() - 1)));
   const auto& flight = flights[*o.only];
   FlightEvents events(g);
-  EmulatedBoardStack stack(events);
+  EmulatedBoardStack board(events);
+  campaign::Px4FlightStack px4(c);
+  campaign::FlightStack& stack = c.stack == campaign::Stack::Px4 ? static_cast<campaign::FlightStack&>(px4) : board;
   bool stopped = false;
   log_info(g, "hitl campaign: flight " + std::to_string(flight.index) + " " + flight.name + " (id " + flight.id + ") into " +
                   campaign::flight_folder(out_dir, flight));
@@ -258,8 +261,24 @@ Expected<campaign::Campaign> load_campaign_file(const std::string& file) {
   return campaign::load_campaign(file, suggest);
 }
 
+/// The file, and for stack = "px4" its PX4 build found (`px4_dir`: --px4 DIR over the file's), so
+/// that a bad DIR is refused before any flight starts.
+Expected<campaign::Campaign> load_flown_campaign(const std::string& file, const std::string& px4_dir) {
+  auto c = load_campaign_file(file);
+  if (!c) return c;
+  if (auto found = campaign::find_campaign_px4(*c, px4_dir); !found) return found.error();
+  return c;
+}
+
+/// "the emulated board", "PX4 v1.16.0 SITL (DIR), a PX4 per flight".
+std::string stack_words(const campaign::Campaign& c) {
+  if (c.stack != campaign::Stack::Px4 || !c.px4 || !c.px4->build) return "the emulated board";
+  const auto& b = *c.px4->build;
+  return "PX4" + (b.version.empty() ? std::string() : " " + b.version) + " SITL (" + b.build_dir + "; one PX4 per flight)";
+}
+
 int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
-  auto c = load_campaign_file(o.file);
+  auto c = load_flown_campaign(o.file, o.px4_dir);
   if (!c) return log_error("campaign", c.error());
   const auto flights = campaign::expand(*c);
   const std::string out_dir = o.out_dir.empty() ? "campaign-" + c->name : o.out_dir;
@@ -277,15 +296,17 @@ int run_campaign_command(const GlobalOptions& g, const CampaignRunOptions& o) {
   ro.mode = o.rerun_failed ? campaign::RunMode::RerunFailed : o.resume ? campaign::RunMode::Resume : campaign::RunMode::Fresh;
   ro.program = self_path();
   const int verbosity = g.verbosity;
-  ro.child_args = [file_abs, out_abs, verbosity](const campaign::Flight& f) {
+  const std::string px4_abs = o.px4_dir.empty() ? std::string() : std::filesystem::absolute(o.px4_dir, ec).string();
+  ro.child_args = [file_abs, out_abs, verbosity, px4_abs](const campaign::Flight& f) {
     std::vector<std::string> args{"campaign", "run", file_abs, "--only", std::to_string(f.index), "--out", out_abs};
+    if (!px4_abs.empty()) args.insert(args.end(), {"--px4", px4_abs});
     for (int i = 0; i < verbosity; ++i) args.push_back("-v");
     return args;
   };
   log_info(g, "hitl campaign: " + c->name + ": " + std::to_string(flights.size()) + " flights (" +
                   std::to_string(c->trajectories.size()) + " trajectories x " + std::to_string(c->fault_cases.size()) +
                   " fault cases x " + std::to_string(c->seeds.size()) + " seeds x " + std::to_string(c->speeds.size()) +
-                  " speeds) against the emulated board, " + std::to_string(ro.jobs) + " at a time, into " + out_dir +
+                  " speeds) against " + stack_words(*c) + ", " + std::to_string(ro.jobs) + " at a time, into " + out_dir +
                   " (Ctrl-C stops; --resume continues)");
   RunPrinter printer(g, c->name);
   auto outcome = campaign::run_campaign(*c, flights, ro, stop_flag_on_signals(), printer);
@@ -307,6 +328,9 @@ struct CampaignCollectOptions {
 int run_collect_command(const GlobalOptions& g, const CampaignCollectOptions& o) {
   auto c = load_campaign_file(o.file);
   if (!c) return log_error("campaign", c.error());
+  // PX4's version for the history, when this machine has the build the file names (the flights
+  // ran elsewhere: without it the history names no version).
+  if (c->stack == campaign::Stack::Px4) (void)campaign::find_campaign_px4(*c, "");
   const auto flights = campaign::expand(*c);
   const std::string out_dir = o.out_dir.empty() ? "campaign-" + c->name : o.out_dir;
   std::error_code ec;
@@ -380,7 +404,7 @@ struct CampaignSlurmOptions {
 
 /// hitl campaign slurm: the flights as a Slurm job array and collect after it, submitted with sbatch.
 int run_slurm_command(const GlobalOptions& g, const CampaignSlurmOptions& o) {
-  auto c = load_campaign_file(o.file);
+  auto c = load_flown_campaign(o.file, "");
   if (!c) return log_error("campaign", c.error());
   const auto sbatch = net::find_on_path("sbatch");
   if (!sbatch)
@@ -432,7 +456,7 @@ int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o)
     for (const auto& t : h->trends) {
       nlohmann::json points = nlohmann::json::array();
       for (const auto& p : t.points)
-        points.push_back({{"run", p.run}, {"label", p.label}, {"started_utc", p.started_utc}, {"flights", p.flights},
+        points.push_back({{"run", p.run}, {"label", p.label}, {"stack_version", p.stack_version}, {"started_utc", p.started_utc}, {"flights", p.flights},
                           {"failed", p.failed}, {"mean", p.flights > 0 ? nlohmann::json(p.mean) : nlohmann::json(nullptr)},
                           {"worst", p.flights > 0 ? nlohmann::json(p.worst) : nlohmann::json(nullptr)}});
       trends.push_back({{"criterion", t.criterion}, {"figure", t.figure}, {"limit", t.limit}, {"points", points},
@@ -452,7 +476,7 @@ int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o)
         else
           std::snprintf(line, sizeof line, "  run %-4lld %-20s %-16s failed %zu", static_cast<long long>(p.run), p.started_utc.c_str(),
                         p.label.empty() ? "-" : p.label.c_str(), p.failed);
-        std::cout << line << '\n';
+        std::cout << line << (p.stack_version.empty() ? "" : "  (PX4 " + p.stack_version + ")") << '\n';
       }
       std::cout << "  " << t.verdict << '\n';
     }
@@ -478,7 +502,7 @@ void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state
   sub->footer("The campaign file: docs/campaigns.md.");
   auto o = std::make_shared<CampaignRunOptions>();
   auto* run = sub->add_subcommand(
-      "run", "Run a campaign file's flights against the emulated board, in parallel, into a results folder");
+      "run", "Run a campaign file's flights against the emulated board or PX4 SITL, in parallel, into a results folder");
   run->add_option("FILE", o->file, "The campaign file (TOML, docs/campaigns.md)")->required()->check(CLI::ExistingFile)
       ->type_name("FILE.toml");
   run->add_option("-j,--jobs", o->jobs, "Flights at a time (default: the cores)")->check(number_in(1, 256))->type_name("N");
@@ -495,6 +519,10 @@ void add_campaign_command(CLI::App& app, GlobalOptions& options, RunState& state
                       ->type_name("FILE");
   run->add_option("--label", o->label, "Name this run in the history: a commit, a firmware version")->type_name("TEXT");
   run->add_flag("--no-history", o->no_history, "Keep this run out of the history")->excludes(history);
+  run->add_option("--px4", o->px4_dir,
+                  "With stack = \"px4\": the PX4 SITL build every flight starts (a build folder or a PX4 tree, as hitl sim "
+                  "--px4 DIR), over the file's px4 = \"DIR\"")
+      ->type_name("DIR");
   run->footer("Exit: 0 when every flight passed, 1 otherwise.");
   run->callback([&options, &state, o]() { state.exit_code = run_campaign_command(options, *o); });
 

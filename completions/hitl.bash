@@ -55,7 +55,7 @@ _hitl_options() {
         'bridge') echo '-h --help -i --target-ip --port --local-port --clients --endpoint --queue-ms --dedup --duration --tui --adb --adb-serial --adb-relay --version --json -v --verbose -q --quiet --dialect --config' ;;
         'demo') echo '-h --help -t --trajectory --speed --trajectory-mode --record --report --no-report --px4 --tui --campaign --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'campaign run') echo '-h --help -j --jobs --out --only --resume --rerun-failed --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'campaign run') echo '-h --help -j --jobs --out --only --resume --rerun-failed --history --label --no-history --px4 --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign collect') echo '-h --help --out --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign matrix') echo '-h --help -o --output --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign k8s') echo '-h --help --image --path-in-image --claim -j --parallelism -o --output --version --json -v --verbose -q --quiet --dialect --config' ;;
@@ -243,6 +243,7 @@ _hitl_value() {
         'campaign run|--only') echo 'text' ;;
         'campaign run|--history') echo 'file' ;;
         'campaign run|--label') echo 'text' ;;
+        'campaign run|--px4') echo 'text' ;;
         'campaign collect|--out') echo 'text' ;;
         'campaign collect|--history') echo 'file' ;;
         'campaign collect|--label') echo 'text' ;;

@@ -25,6 +25,7 @@ namespace hitl::campaign {
 const char* to_string(Stack stack) {
   switch (stack) {
     case Stack::Target: return "target";
+    case Stack::Px4: return "px4";
   }
   return "target";
 }
@@ -127,6 +128,11 @@ class Reader {
 
 int line_of(const toml::key& key) { return static_cast<int>(key.source().begin.line); }
 
+/// Why stack = "px4" needs speeds above 0 (hitl sim --px4's --speed 0 refusal, in a campaign's words).
+constexpr const char* kPx4SpeedNeeded =
+    "stack = \"px4\" runs PX4 in lockstep at a stated factor (PX4_SIM_SPEED_FACTOR, as hitl sim --px4-speed K): give "
+    "speeds above 0 (on a 2-core machine K <= 8 keeps PX4's estimator up)";
+
 /// The entries of a table in the file's order (toml++ keeps tables sorted by key).
 std::vector<std::pair<const toml::key*, const toml::node*>> in_file_order(const toml::table& table) {
   std::vector<std::pair<const toml::key*, const toml::node*>> entries;
@@ -137,12 +143,56 @@ std::vector<std::pair<const toml::key*, const toml::node*>> in_file_order(const 
   return entries;
 }
 
+/// px4 = "DIR" and px4_params = { NAME = value } of [campaign]: only with stack = "px4". The DIR is
+/// found later (find_campaign_px4), so that --px4 DIR can stand in for one this machine lacks.
+Status read_px4_keys(const Reader& r, const toml::table& t, Campaign& c) {
+  const auto* dir = t.get("px4");
+  const auto* params = t.get("px4_params");
+  if (!c.px4) {
+    if (dir != nullptr) return r.at(*dir, "campaign.px4", "only with stack = \"px4\" (the PX4 SITL build the flights start)");
+    if (params != nullptr) return r.at(*params, "campaign.px4_params", "only with stack = \"px4\"");
+    return Ok{};
+  }
+  if (dir != nullptr) {
+    auto d = r.string_of(*dir, "campaign.px4");
+    if (!d) return d.error();
+    if (d->empty()) return r.at(*dir, "campaign.px4", "is empty: a PX4 SITL build folder or a PX4 tree, as hitl sim --px4 DIR");
+    c.px4->dir_as_written = *d;
+    c.px4->dir = r.resolve(*d);
+    c.px4->line = static_cast<int>(dir->source().begin.line);
+  }
+  if (params == nullptr) return Ok{};
+  const auto* table = params->as_table();
+  if (table == nullptr) return r.at(*params, "campaign.px4_params", "must be a table { NAME = value, ... } (PX4's parameters, as --px4-param)");
+  if (table->size() > kMaxAxisValues)
+    return r.at(*params, "campaign.px4_params", "has more than " + std::to_string(kMaxAxisValues) + " parameters");
+  for (const auto& [key, value] : in_file_order(*table)) {
+    const std::string where = "campaign.px4_params." + std::string(key->str());
+    std::string text;
+    if (value->is_integer()) text = std::to_string(*value->value<int64_t>());
+    else if (value->is_floating_point()) {
+      const double v = *value->value<double>();
+      if (!std::isfinite(v)) return r.at(*value, where, "must be a finite number");
+      char number[32];
+      std::snprintf(number, sizeof number, "%.9g", v);
+      text = number;
+    } else {
+      return r.at(*value, where, "must be a number (PX4 parameters are whole numbers or decimals)");
+    }
+    auto p = px4::parse_px4_param(std::string(key->str()) + "=" + text);
+    if (!p) return r.at(line_of(*key), where, p.error().message);
+    c.px4->params.push_back(*p);
+  }
+  return Ok{};
+}
+
 Status read_campaign_table(const Reader& r, const toml::table& root, Campaign& c) {
   const auto* node = root.get("campaign");
   if (node == nullptr) return r.at(1, "campaign", "missing: the file needs a [campaign] table with its name");
   const auto* t = node->as_table();
   if (t == nullptr) return r.at(*node, "campaign", "must be a table [campaign]");
-  if (auto ok = r.only_keys(*t, "campaign", {"name", "stack", "px4", "time_limit_s", "sim_limit_s", "report"}); !ok) return ok;
+  if (auto ok = r.only_keys(*t, "campaign", {"name", "stack", "px4", "px4_params", "time_limit_s", "sim_limit_s", "report"}); !ok)
+    return ok;
   const auto* name = t->get("name");
   if (name == nullptr) return r.at(*node, "campaign.name", "missing: the campaign's name");
   auto n = r.string_of(*name, "campaign.name");
@@ -152,12 +202,15 @@ Status read_campaign_table(const Reader& r, const toml::table& root, Campaign& c
   if (const auto* stack = t->get("stack")) {
     auto s = r.string_of(*stack, "campaign.stack");
     if (!s) return s.error();
-    if (*s == "px4")
-      return r.at(*stack, "campaign.stack", "\"px4\" (PX4 SITL with px4 = \"DIR\") is not supported by campaigns yet; use \"target\"");
-    if (*s != "target") return r.at(*stack, "campaign.stack", "\"" + *s + "\" is not a flight stack (known: target)");
+    if (*s == "px4") {
+      c.stack = Stack::Px4;
+      c.px4.emplace();
+      c.px4->line = static_cast<int>(stack->source().begin.line);
+    } else if (*s != "target") {
+      return r.at(*stack, "campaign.stack", "\"" + *s + "\" is not a flight stack (known: target, px4)");
+    }
   }
-  if (const auto* px4 = t->get("px4"))
-    return r.at(*px4, "campaign.px4", "PX4 SITL in campaigns is not supported yet (it will take stack = \"px4\" and this key)");
+  if (auto ok = read_px4_keys(r, *t, c); !ok) return ok;
   if (const auto* v = t->get("time_limit_s")) {
     auto x = r.number_of(*v, "campaign.time_limit_s", 0.1, 86400);
     if (!x) return x.error();
@@ -220,11 +273,13 @@ Status read_matrix(const Reader& r, const toml::table& root, Campaign& c) {
     for (std::size_t i = 0; i < (*sa)->size(); ++i) {
       auto x = r.number_of(*(*sa)->get(i), "matrix.speeds[" + std::to_string(i) + "]", 0, 1000);
       if (!x) return x.error();
+      if (c.stack == Stack::Px4 && !(*x > 0)) return r.at(*(*sa)->get(i), "matrix.speeds[" + std::to_string(i) + "]", kPx4SpeedNeeded);
       if (std::find(c.speeds.begin(), c.speeds.end(), *x) != c.speeds.end())
         return r.at(*(*sa)->get(i), "matrix.speeds[" + std::to_string(i) + "]", "speed " + Reader::number(*x) + " is listed twice");
       c.speeds.push_back(*x);
     }
   } else {
+    if (c.stack == Stack::Px4) return r.at(*node, "matrix.speeds", std::string("missing: ") + kPx4SpeedNeeded);
     c.speeds = {0};
   }
   return Ok{};
@@ -427,6 +482,37 @@ std::vector<std::string> criterion_figures() {
   std::vector<std::string> out;
   collect_leaves(j, "", out);
   return out;
+}
+
+Status find_campaign_px4(Campaign& c, const std::string& override_dir) {
+  if (c.stack != Stack::Px4) {
+    if (!override_dir.empty())
+      return Error::usage("--px4: " + c.file + " flies against stack = \"" + to_string(c.stack) + "\"; --px4 DIR is for stack = \"px4\"");
+    return Ok{};
+  }
+  std::string dir, where;
+  if (!override_dir.empty()) {
+    dir = override_dir;
+    where = "--px4: ";
+  } else if (!c.px4->dir.empty()) {
+    dir = c.px4->dir;
+    where = c.file + ":" + std::to_string(c.px4->line) + ": campaign.px4: ";
+  } else {
+    return Error::input(c.file + ":" + std::to_string(c.px4->line) +
+                        ": campaign.px4: missing: stack = \"px4\" needs px4 = \"DIR\" (a PX4 SITL build folder or a PX4 tree, "
+                        "as hitl sim --px4 DIR) or --px4 DIR");
+  }
+  auto build = px4::find_px4_build(dir);
+  if (!build) return build.error().prefixed(where);
+  if (!build->lockstep)
+    return Error::input(where + "'" + build->build_dir + "' is a PX4 build without lockstep (px4_sitl_nolockstep); campaigns "
+                        "need px4_sitl_default, which scripts/px4-sitl.sh builds");
+  c.px4->build = std::move(build.value());
+  return Ok{};
+}
+
+std::string stack_version(const Campaign& c) {
+  return c.px4 && c.px4->build ? c.px4->build->version : std::string();
 }
 
 Expected<Campaign> parse_campaign(const std::string& text, const std::string& path, const faults::Suggest& suggest) {

@@ -12,6 +12,8 @@
 
 #include "base/common/expected.h"
 #include "engine/faults/fault_spec.h"
+#include "engine/px4/px4_build.h"
+#include "engine/px4/px4_process.h"
 
 namespace hitl::campaign {
 
@@ -20,10 +22,20 @@ inline constexpr std::size_t kMaxCampaignFileBytes = 1 << 20;
 inline constexpr std::size_t kMaxAxisValues = 256;
 inline constexpr std::size_t kMaxFlights = 10000;
 
-/// The flight stack the flights fly against. Only the emulated board today; `stack = "px4"` with
-/// `px4 = "DIR"` is the key PX4 SITL will take (refused for now, with that said).
-enum class Stack { Target };
+/// The flight stack the flights fly against: the emulated board (hitl target, in the flight's
+/// process), or PX4 SITL that each flight starts, owns and stops as `hitl sim --px4 DIR` does.
+enum class Stack { Target, Px4 };
 const char* to_string(Stack stack);
+
+/// stack = "px4": the PX4 SITL build every flight starts (`px4 = "DIR"`, or `--px4 DIR`) and the
+/// parameters it is given over the vehicle's (`px4_params = { NAME = value }`, as --px4-param).
+struct Px4Stack {
+  std::string dir_as_written;  ///< px4 = "DIR" as the file wrote it; empty: the file names none (--px4 DIR must)
+  std::string dir;             ///< resolved against the campaign file's folder
+  int line = 0;                ///< the line of px4 = (or of stack = when the file names no DIR)
+  std::vector<px4::Px4Param> params;   ///< in the file's order
+  std::optional<px4::Px4Build> build;  ///< found by find_campaign_px4(), before any flight
+};
 
 /// A named fault case: the faults one flight starts with (empty: "none").
 struct FaultCase {
@@ -81,6 +93,7 @@ struct Campaign {
   std::string file;          ///< the path it was read from (as given)
   std::string name;          ///< [campaign] name
   Stack stack = Stack::Target;
+  std::optional<Px4Stack> px4;  ///< with stack = "px4"
   double time_limit_s = 300;  ///< [campaign] time_limit_s: wall clock per flight; past it the flight is killed
   double sim_limit_s = 0;     ///< [campaign] sim_limit_s: simulated seconds per flight (0: until the trajectory ends)
   bool report = false;        ///< [campaign] report: the report page per flight (hitl report)
@@ -99,6 +112,15 @@ struct Campaign {
 Expected<Campaign> parse_campaign(const std::string& text, const std::string& path, const faults::Suggest& suggest = {});
 /// Reads and parses the file (bounded).
 Expected<Campaign> load_campaign(const std::string& path, const faults::Suggest& suggest = {});
+
+/// stack = "px4": finds the PX4 build the flights start, `override_dir` (--px4 DIR) when given, else
+/// the file's px4 = "DIR", and keeps it in campaign.px4->build. An input Error saying what is missing
+/// in hitl sim --px4's words, naming where the DIR came from ("--px4: 'DIR' is not a PX4 SITL
+/// build: ...", "FILE:LINE: campaign.px4: ..."), or that neither names one; a build without
+/// lockstep is refused too. With stack = "target", an override is a usage Error.
+Status find_campaign_px4(Campaign& campaign, const std::string& override_dir);
+/// The flight stack's version: PX4's ("v1.16.0") once found; "" for the emulated board.
+std::string stack_version(const Campaign& campaign);
 
 /// The figures a criterion may name: every number, true/false or text leaf of a flight's summary
 /// (flight_summary.h), as dotted paths.

@@ -27,6 +27,10 @@ std::string stable_id(const std::string& text) {
 
 std::string flight_parameters(const Campaign& campaign, const Flight& flight) {
   std::string p = "stack=" + std::string(to_string(campaign.stack));
+  if (campaign.px4 && !campaign.px4->params.empty()) {  // PX4's build is not: the same flight against a new PX4 keeps its id
+    p += "\npx4_params=";
+    for (const auto& param : campaign.px4->params) p += param.name + "=" + param.value + ";";
+  }
   p += "\ntrajectory=" + flight.trajectory->as_written;
   p += "\nfaults=";
   for (const auto& spec : flight.fault_case->faults) p += spec.text() + ";";

@@ -43,6 +43,36 @@ Status write_json(const std::string& path, const nlohmann::json& j) {
 
 }  // namespace
 
+void Px4FlightStack::configure(hil::SessionConfig& config) const {
+  hil::Px4Options px4;
+  if (campaign_.px4 && campaign_.px4->build) {
+    px4.build = *campaign_.px4->build;
+    px4.params = campaign_.px4->params;
+  }
+  px4.connect_timeout_s = kConnectTimeout_s;
+  // Empty: beside the recording, FILE.px4/ and FILE.px4.log (kPx4WorkFolder, kPx4ConsoleFile), where
+  // hitl report finds PX4's ULog as beside any hitl sim --px4 recording.
+  px4.work_dir.clear();
+  config.px4 = std::move(px4);
+  config.vio = false;  // PX4 SITL's none_iris takes no ODOMETRY from hitl
+}
+
+StackFigures Px4FlightStack::figures(const hil::SessionSnapshot& s) const {
+  StackFigures f;
+  f.armed = s.stack_state.armed;
+  f.mode = s.stack_state.mode;
+  f.landed_state = s.stack_state.landed_state;
+  auto count = [](const std::map<std::string, hil::StreamCount>& counts, const char* name) -> uint64_t {
+    const auto it = counts.find(name);
+    return it == counts.end() ? 0 : it->second.count;
+  };
+  f.hil_sensor_received = count(s.sent, "HIL_SENSOR");
+  f.hil_gps_received = count(s.sent, "HIL_GPS");
+  f.actuators_sent = count(s.received, "HIL_ACTUATOR_CONTROLS");
+  f.malformed = s.crc_errors + s.parse_errors;
+  return f;
+}
+
 bool reads_recording(const Campaign& campaign) {
   if (!campaign.expectations.empty()) return true;
   for (const auto& c : campaign.criteria)
@@ -141,6 +171,7 @@ Expected<FlightResult> run_flight(const Campaign& campaign, const Flight& flight
   cfg.trajectory = std::move(trajectory.value());
   cfg.faults = flight.fault_case->faults;
   cfg.record_path = (std::filesystem::path(folder) / kRecordingFile).string();
+  stack.configure(cfg);
   auto session = hil::Session::create(cfg);
   if (!session) {
     stack.stop();
@@ -163,10 +194,10 @@ Expected<FlightResult> run_flight(const Campaign& campaign, const Flight& flight
   // campaign judges them (it costs tens of milliseconds a flight: two passes over the .tlog).
   if (reads_recording(campaign)) {
     auto log = report::read_flight_log(cfg.record_path);
-    r.figures = flight_summary_json(campaign, flight, snapshot, end_name(*end), stack.figures(), log ? &log.value() : nullptr);
+    r.figures = flight_summary_json(campaign, flight, snapshot, end_name(*end), stack.figures(snapshot), log ? &log.value() : nullptr);
     if (!log) r.figures["events_error"] = log.error().message;
   } else {
-    r.figures = flight_summary_json(campaign, flight, snapshot, end_name(*end), stack.figures(), nullptr);
+    r.figures = flight_summary_json(campaign, flight, snapshot, end_name(*end), stack.figures(snapshot), nullptr);
     r.figures.erase("ekf_test_ratios");
     r.figures.erase("events");
   }

@@ -31,9 +31,33 @@ class FlightStack {
   virtual ~FlightStack() = default;
   /// Opens its sockets on the OS's ports and starts running.
   virtual Expected<Ports> start() = 0;
+  /// What the session needs of the stack beyond the ports (PX4: the build the session starts and
+  /// stops, as hitl sim --px4 DIR); after the flight's own settings.
+  virtual void configure(hil::SessionConfig& config) const { (void)config; }
   /// Stops it; figures() stays readable.
   virtual void stop() = 0;
-  virtual StackFigures figures() const = 0;
+  /// What the stack said and counted by the flight's end; `session`: the session's last snapshot.
+  virtual StackFigures figures(const hil::SessionSnapshot& session) const = 0;
+};
+
+/// PX4 SITL as a flight's stack (stack = "px4"): nothing runs before the session, which starts PX4
+/// on a free instance, in the flight's folder (flight.px4/, its console flight.px4.log, its ULog in
+/// flight.px4/log/), in lockstep at the flight's speed, and stops it at the end (engine/hil/px4_launch.h).
+/// The campaign's build must have been found (find_campaign_px4).
+class Px4FlightStack : public FlightStack {
+ public:
+  explicit Px4FlightStack(const Campaign& campaign) : campaign_(campaign) {}
+  Expected<Ports> start() override { return Ports{}; }
+  void configure(hil::SessionConfig& config) const override;
+  void stop() override {}
+  /// PX4's armed, mode and landed state from its GCS instance; the simulator link's counts.
+  StackFigures figures(const hil::SessionSnapshot& session) const override;
+
+  /// PX4 must connect to its simulator port within this (hitl sim's --px4-timeout default).
+  static constexpr double kConnectTimeout_s = 30;
+
+ private:
+  const Campaign& campaign_;
 };
 
 /// The campaign judges what only the recording holds (expectations, a criterion on
@@ -48,6 +72,9 @@ inline constexpr const char* kResultFile = "result.json";
 inline constexpr const char* kRecordingFile = "flight.tlog";
 inline constexpr const char* kReportFile = "report.html";
 inline constexpr const char* kLogFile = "log.txt";
+/// stack = "px4": PX4's working folder (its ULogs in log/) and its console, beside the recording.
+inline constexpr const char* kPx4WorkFolder = "flight.px4";
+inline constexpr const char* kPx4ConsoleFile = "flight.px4.log";
 
 /// How one flight came out: what result.json holds.
 struct FlightResult {

@@ -28,6 +28,7 @@ nlohmann::json flight_summary_json(const Campaign& campaign, const Flight& fligh
                    {"ODOMETRY", per_sim_second(s, s.sent, "ODOMETRY")},
                    {"HIL_ACTUATOR_CONTROLS", per_sim_second(s, s.received, "HIL_ACTUATOR_CONTROLS")}};
   j["stack"] = {{"kind", to_string(campaign.stack)},
+                {"version", stack_version(campaign)},
                 {"armed", stack.armed},
                 {"mode", stack.mode},
                 {"landed_state", stack.landed_state},

@@ -14,7 +14,9 @@
 
 namespace hitl::campaign {
 
-/// What the flight stack itself counted (the emulated board's snapshot), under "stack".
+/// What the flight stack itself said and counted, under "stack": the emulated board's snapshot; for
+/// PX4, its state from its GCS instance (the session's stack_state) and the simulator link's counts
+/// (TCP: what hitl sent is what PX4 received).
 struct StackFigures {
   bool armed = false;
   std::string mode;

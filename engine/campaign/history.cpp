@@ -17,14 +17,14 @@ namespace hitl::campaign {
 
 namespace {
 
-constexpr const char* kSchemaVersion = "1";
+constexpr const char* kSchemaVersion = "2";  ///< 2: runs.stack and runs.stack_version (a history of schema 1 gains them)
 constexpr int kBusyTimeout_ms = 10000;
 
 constexpr const char* kSchema = R"(
 CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT);
 CREATE TABLE IF NOT EXISTS runs(id INTEGER PRIMARY KEY AUTOINCREMENT, campaign TEXT NOT NULL, file TEXT, label TEXT,
   started_utc TEXT, wall_s REAL, flights INTEGER, passed INTEGER, failed INTEGER, errors INTEGER, missing INTEGER,
-  stopped INTEGER);
+  stopped INTEGER, stack TEXT, stack_version TEXT);
 CREATE TABLE IF NOT EXISTS flights(run INTEGER NOT NULL, flight_id TEXT, name TEXT, outcome TEXT, reason TEXT);
 CREATE TABLE IF NOT EXISTS verdicts(run INTEGER NOT NULL, flight_id TEXT, criterion TEXT, figure TEXT, limit_text TEXT,
   value REAL, ok INTEGER);
@@ -75,11 +75,21 @@ Expected<Db> open_db(const std::string& path, bool create) {
   Stmt stmt(s);
   if (sqlite3_step(s) == SQLITE_ROW) {
     const auto* v = sqlite3_column_text(s, 0);
-    if (v == nullptr || std::string(reinterpret_cast<const char*>(v)) != kSchemaVersion)
-      return Error::input("history " + path + ": a history of another hitl version (schema " +
-                          (v != nullptr ? std::string(reinterpret_cast<const char*>(v)) : "?") + ")");
+    const std::string schema = v != nullptr ? std::string(reinterpret_cast<const char*>(v)) : "?";
+    if (schema == "1" && create) {  // schema 1 had no stack: its runs were all against the emulated board
+      stmt.reset();
+      if (sqlite3_exec(raw,
+                       "BEGIN IMMEDIATE; ALTER TABLE runs ADD COLUMN stack TEXT; ALTER TABLE runs ADD COLUMN stack_version TEXT; "
+                       "UPDATE runs SET stack = 'target', stack_version = ''; UPDATE meta SET value = '2' WHERE key = 'schema'; COMMIT",
+                       nullptr, nullptr, nullptr) != SQLITE_OK) {
+        sqlite3_exec(raw, "ROLLBACK", nullptr, nullptr, nullptr);
+        return db_error(path, raw, "cannot add the stack to a history of schema 1");
+      }
+    } else if (schema != kSchemaVersion && schema != "1") {
+      return Error::input("history " + path + ": a history of another hitl version (schema " + schema + ")");
+    }
   } else if (create) {
-    if (sqlite3_exec(raw, "INSERT INTO meta(key, value) VALUES('schema', '1')", nullptr, nullptr, nullptr) != SQLITE_OK)
+    if (sqlite3_exec(raw, "INSERT INTO meta(key, value) VALUES('schema', '2')", nullptr, nullptr, nullptr) != SQLITE_OK)
       return db_error(path, raw, "cannot write");
   }
   return db;
@@ -132,7 +142,7 @@ Status record_run(const std::string& path, const Campaign& campaign, const std::
   }
   auto insert_run = prepare(path, d,
                             "INSERT INTO runs(campaign, file, label, started_utc, wall_s, flights, passed, failed, errors, missing, "
-                            "stopped) VALUES(?,?,?,?,?,?,?,?,?,?,?)");
+                            "stopped, stack, stack_version) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?)");
   if (!insert_run) return insert_run.error();
   sqlite3_stmt* s = insert_run->get();
   bind_text(s, 1, campaign.name);
@@ -143,6 +153,8 @@ Status record_run(const std::string& path, const Campaign& campaign, const std::
   const std::size_t counts[] = {flights.size(), passed, failed, errors, missing};
   for (int i = 0; i < 5; ++i) sqlite3_bind_int64(s, 6 + i, static_cast<sqlite3_int64>(counts[i]));
   sqlite3_bind_int(s, 11, run.stopped ? 1 : 0);
+  bind_text(s, 12, to_string(campaign.stack));
+  bind_text(s, 13, stack_version(campaign));
   if (sqlite3_step(s) != SQLITE_DONE) return db_error(path, d, "cannot write the run");
   const sqlite3_int64 run_id = sqlite3_last_insert_rowid(d);
   auto insert_flight = prepare(path, d, "INSERT INTO flights(run, flight_id, name, outcome, reason) VALUES(?,?,?,?,?)");
@@ -241,7 +253,13 @@ Expected<History> read_history(const std::string& path, const std::string& campa
   bind_text(count->get(), 1, campaign);
   if (sqlite3_step(count->get()) == SQLITE_ROW) h.runs = static_cast<std::size_t>(sqlite3_column_int64(count->get(), 0));
   if (h.runs == 0) return Error::input("history " + path + ": no runs of campaign \"" + campaign + "\"");
-  auto runs = prepare(path, d, "SELECT id, label, started_utc FROM runs WHERE campaign = ? ORDER BY id DESC LIMIT ?");
+  // A history of schema 1, read only, has no stack_version: its runs flew the emulated board.
+  auto columns = prepare(path, d, "SELECT COUNT(*) FROM pragma_table_info('runs') WHERE name = 'stack_version'");
+  if (!columns) return columns.error();
+  const bool has_version = sqlite3_step(columns->get()) == SQLITE_ROW && sqlite3_column_int(columns->get(), 0) > 0;
+  auto runs = prepare(path, d,
+                      has_version ? "SELECT id, label, started_utc, stack_version FROM runs WHERE campaign = ? ORDER BY id DESC LIMIT ?"
+                                  : "SELECT id, label, started_utc, '' FROM runs WHERE campaign = ? ORDER BY id DESC LIMIT ?");
   if (!runs) return runs.error();
   bind_text(runs->get(), 1, campaign);
   sqlite3_bind_int64(runs->get(), 2, static_cast<sqlite3_int64>(std::max<std::size_t>(last_runs, 2)));
@@ -251,6 +269,7 @@ Expected<History> read_history(const std::string& path, const std::string& campa
     p.run = sqlite3_column_int64(runs->get(), 0);
     p.label = column_text(runs->get(), 1);
     p.started_utc = column_text(runs->get(), 2);
+    p.stack_version = column_text(runs->get(), 3);
     run_points.push_back(p);
   }
   std::reverse(run_points.begin(), run_points.end());  // oldest first

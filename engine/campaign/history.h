@@ -1,5 +1,6 @@
 // The campaign history: every `hitl campaign run` stored in an SQLite database (Debian's libsqlite3):
-// the campaign, the label the user names (a commit, a firmware version), when, the counts, each
+// the campaign, the label the user names (a commit, a firmware version), the flight stack and its
+// version (PX4's, when the flights flew PX4 SITL), when, the counts, each
 // flight's outcome and each criterion's figure. `hitl campaign history` reads it back as per-
 // criterion trends, and flags a regression: the latest run's figure worse than the runs before it
 // by more than their spread.
@@ -40,6 +41,7 @@ struct TrendPoint {
   int64_t run = 0;  ///< the run's number in the database
   std::string label;
   std::string started_utc;
+  std::string stack_version;  ///< the flight stack's version in that run (PX4's: "v1.16.0"); "" for the emulated board
   std::size_t flights = 0;  ///< flights with a number for it
   std::size_t failed = 0;   ///< flights that broke it
   double mean = 0;

@@ -117,7 +117,7 @@ nlohmann::json campaign_summary_json(const Campaign& c, const std::vector<Flight
                     {"wall_s", r ? flight_time_s(*r) : 0.0},
                     {"folder", "flights/" + f.id}});
   }
-  return {{"type", "summary"},   {"campaign", c.name},   {"file", c.file},     {"stack", to_string(c.stack)},
+  return {{"type", "summary"},   {"campaign", c.name},   {"file", c.file},     {"stack", to_string(c.stack)}, {"stack_version", stack_version(c)},
           {"flights", t.flights}, {"passed", t.passed},   {"failed", t.failed}, {"errors", t.errors},
           {"missing", t.missing}, {"ok", t.passed == t.flights},                {"stopped", stopped},
           {"wall_s", wall_s},     {"results", list}};
@@ -135,6 +135,15 @@ std::string junit_xml(const Campaign& c, const std::vector<Flight>& flights, con
   for (const auto& axis : axis_values(c)) {
     auto suite = root.append_child("testsuite");
     suite.append_attribute("name") = axis.suite.c_str();
+    auto properties = suite.append_child("properties");  // the flight stack, which no axis names
+    auto stack = properties.append_child("property");
+    stack.append_attribute("name") = "stack";
+    stack.append_attribute("value") = to_string(c.stack);
+    if (const std::string version = stack_version(c); !version.empty()) {
+      auto v = properties.append_child("property");
+      v.append_attribute("name") = "stack_version";
+      v.append_attribute("value") = version.c_str();
+    }
     std::size_t tests = 0, failures = 0, errors = 0, skipped = 0;
     double time = 0;
     for (const auto& f : flights) {

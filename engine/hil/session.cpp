@@ -117,6 +117,23 @@ void ask_for_realtime(EventSink& events) {
                        (fifo && locked ? "" : " (run as root or grant CAP_SYS_NICE and CAP_IPC_LOCK)")});
 }
 
+/// PX4's console warnings and errors ("PX4: WARN  [failsafe] Failsafe activated", px4_launch.h) go
+/// to the observer and also where the session's own notes go: the clients and the recording, as the
+/// simulator's STATUSTEXT on the simulator's clock, so that a report or a campaign's expectation
+/// sees what PX4 said only on its console.
+class Px4ConsoleNotes : public EventSink {
+ public:
+  Px4ConsoleNotes(EventSink& next, ClientServices& services) : next_(next), services_(services) {}
+  void on_event(const SessionEvent& e) override {
+    next_.on_event(e);
+    if (e.text.rfind("PX4: ", 0) == 0) services_.announce(e.severity, e.text);
+  }
+
+ private:
+  EventSink& next_;
+  ClientServices& services_;
+};
+
 }  // namespace
 
 Expected<Session::EndReason> Session::run(const std::atomic<bool>& stop, Observer& observer) {
@@ -187,7 +204,8 @@ Expected<Session::EndReason> Session::Impl::run_steps(const std::atomic<bool>& s
     }
     if (s.px4 && (s.stack->gone() || monotonic_s() >= next_px4_check_s)) {  // PX4's console, and whether it still runs
       next_px4_check_s = monotonic_s() + 0.1;
-      if (auto ended = s.px4->check(observer, s.stack->connected(), s.stack->gone())) {
+      Px4ConsoleNotes notes(observer, *s.services);
+      if (auto ended = s.px4->check(notes, s.stack->connected(), s.stack->gone())) {
         s.publish();
         return *ended;
       }

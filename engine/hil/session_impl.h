@@ -66,6 +66,7 @@ struct Session::Impl {
   uint64_t resets = 0;
 
   std::string board_mode;      ///< the board's PX4 mode from its HEARTBEAT (scenario conditions)
+  SessionSnapshot::StackState stack_state;  ///< the stack's HEARTBEAT and EXTENDED_SYS_STATE (board_mode among them)
   double rest_altitude_m = 0;  ///< the body origin's height at rest at home: altitude 0, as PX4's local position
   double next_heartbeat_s = 0;
   double start_wall_s = 0;

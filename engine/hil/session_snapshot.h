@@ -42,7 +42,16 @@ struct SessionSnapshot {
     std::string work_dir;  ///< its parameters and ULogs (log/)
     std::string console;   ///< its console file
   } px4;
-  bool armed = false;
+  bool armed = false;                   ///< the last actuator message's armed flag
+  /// What the flight stack says of itself: its HEARTBEAT (armed, mode) and EXTENDED_SYS_STATE (landed
+  /// state); a board's on its HIL link, PX4's that --px4 started from its GCS instance. Empty (and
+  /// heard false) until the stack sent them.
+  struct StackState {
+    bool heard = false;        ///< a HEARTBEAT from the stack's autopilot
+    bool armed = false;        ///< its MAV_MODE_FLAG_SAFETY_ARMED
+    std::string mode;          ///< "Position", "Land" (telemetry/px4_mode.h)
+    std::string landed_state;  ///< "on_ground", "in_air", "takeoff", "landing", "undefined"; empty: never sent
+  } stack_state;
   std::array<double, 4> motor_commands{};
   std::array<double, 4> rotor_speed_rad_s{};
   double altitude_m = 0;                ///< above home at rest: 0 on the ground, as PX4's local position (truth)

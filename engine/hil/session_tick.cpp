@@ -19,6 +19,23 @@
 
 namespace hitl::hil {
 
+namespace {
+
+/// MAV_LANDED_STATE in the emulated board's words (its snapshot's landed_state), so a campaign's
+/// criterion on the landed state reads the same against either flight stack.
+std::string landed_state_word(uint8_t landed_state) {
+  switch (static_cast<mavlink::MavLandedState>(landed_state)) {
+    case mavlink::MavLandedState::OnGround: return "on_ground";
+    case mavlink::MavLandedState::InAir: return "in_air";
+    case mavlink::MavLandedState::Takeoff: return "takeoff";
+    case mavlink::MavLandedState::Landing: return "landing";
+    case mavlink::MavLandedState::Undefined: return "undefined";
+  }
+  return "state " + std::to_string(landed_state);
+}
+
+}  // namespace
+
 Status Session::Impl::step(EventSink& events) {
   // Drain: the flight stack's link and the client port.
   const double now_s = monotonic_s();
@@ -125,8 +142,14 @@ void Session::Impl::drain(double now_s) {
     if (f.is<mavlink::msg::HilActuatorControls>()) loop_latency->on_actuator(f.as<mavlink::msg::HilActuatorControls>().time_usec, t_s);
     if (f.is<mavlink::msg::Heartbeat>()) {  // the board's mode, for the scenario's conditions
       const auto hb = f.as<mavlink::msg::Heartbeat>();
-      if (hb.autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid)) board_mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
+      if (hb.autopilot != static_cast<uint8_t>(mavlink::MavAutopilot::Invalid)) {
+        board_mode = telemetry::px4_mode_name(hb.base_mode, hb.custom_mode);
+        stack_state.heard = true;
+        stack_state.armed = (hb.base_mode & mavlink::mode_flag::kSafetyArmed) != 0;
+        stack_state.mode = board_mode;
+      }
     }
+    if (f.is<mavlink::msg::ExtendedSysState>()) stack_state.landed_state = landed_state_word(f.as<mavlink::msg::ExtendedSysState>().landed_state);
     if (pilot) pilot->on_board_frame(f);
     services->route_from_stack(f, t_s);
   });
@@ -249,6 +272,7 @@ void Session::Impl::publish() {
   s.loop_latency = loop_latency->summary();
   s.hil_link_faults = stack->link_faults().counts();
   s.vio_link_faults = services->vio_link_faults().counts();
+  s.stack_state = stack_state;
   if (px4) s.px4 = {px4->instance().index, px4->build().version, px4->build().build_dir, px4->work_dir(), px4->console_path()};
   std::lock_guard<std::mutex> lock(snapshot_mutex);
   published = std::move(s);

@@ -132,6 +132,10 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
   std::error_code ec;
   std::filesystem::create_directories(options.work_dir, ec);
   if (ec) return Error::unavailable("cannot create PX4's working folder '" + options.work_dir + "': " + ec.message());
+  // Absolute: the child changes into the folder before PX4 starts, and PX4 takes -w from there (a
+  // relative one made PX4 fail, or work in a folder inside the folder, where no report finds its ULog).
+  const std::string work_dir = std::filesystem::absolute(options.work_dir, ec).string();
+  if (ec) return Error::unavailable("cannot name PX4's working folder '" + options.work_dir + "': " + ec.message());
   const int console = ::open(options.console_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (console < 0)
     return Error::unavailable("cannot write PX4's console to '" + options.console_path + "': " + std::strerror(errno));
@@ -159,7 +163,7 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
   for (auto& s : env_strings) envp.push_back(s.data());
   envp.push_back(nullptr);
   std::vector<std::string> args = {build.program, "-d", "-i", std::to_string(options.instance.index), "-w",
-                                   options.work_dir, build.etc_dir};
+                                   work_dir, build.etc_dir};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -172,7 +176,8 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
     return Error::unavailable(std::string("cannot start PX4: pipe: ") + std::strerror(err));
   }
 
-  // hitl -> a supervisor (a fork of hitl that never execs) -> PX4 in a process group of its own.
+  // hitl -> a supervisor (a fork of hitl that never execs, in a process group of its own) -> PX4 in a
+// process group of its own.
   // PX4 runs its start script in a shell that starts PX4's modules as client processes; killed with
   // PX4 alone (PR_SET_PDEATHSIG reaches only a direct child), that shell went on and started them in
   // the next PX4 of the same instance. The supervisor dies with hitl and then kills PX4's whole
@@ -187,6 +192,10 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
     return Error::unavailable(std::string("cannot start PX4: fork: ") + std::strerror(err));
   }
   if (supervisor == 0) {
+    // A group of its own too (set by both sides of the fork, so that neither order races): a kill
+    // of hitl's process group (a campaign's runner kills a flight past its time limit that way)
+    // must leave the supervisor to see hitl die and kill PX4, not take it along and orphan PX4.
+    ::setpgid(0, 0);
     ::prctl(PR_SET_PDEATHSIG, SIGUSR2);
     if (::getppid() != parent) ::_exit(127);
     // hitl's other descriptors (its sockets) are not the supervisor's to hold.
@@ -236,6 +245,7 @@ Expected<std::unique_ptr<Px4Process>> Px4Process::start(const Px4Build& build, c
       ::sigwait(&wanted, &sig);
     }
   }
+  ::setpgid(supervisor, supervisor);
   ::close(console);
   if (null_in >= 0) ::close(null_in);
   ::close(pid_pipe[1]);

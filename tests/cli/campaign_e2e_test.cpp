@@ -306,5 +306,25 @@ TEST(CampaignE2E, ABadFileIsRefusedWithFileLineAndKey) {
   EXPECT_NE(r.err.find(file + ":12: criteria.bad.figure: \"trajectory.rms\" is not a figure"), std::string::npos) << r.err;
 }
 
+TEST(CampaignE2E, APx4CampaignWithABadPx4FolderIsRefusedBeforeAnyFlight) {
+  // No PX4 needed: the folder is checked, as hitl sim --px4 checks it, before anything flies.
+  const auto dir = test::temp_dir();
+  std::ofstream(dir + "/hover.json") << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2, "yaw": 0}]})";
+  const std::string file = dir + "/px4.toml";
+  std::ofstream(file) << "[campaign]\nname = \"p\"\nstack = \"px4\"\npx4 = \"no-px4-here\"\n"
+                         "[matrix]\ntrajectories = [\"hover.json\"]\nspeeds = [5]\n";
+  auto r = test::run_hitl({"campaign", "run", file, "--out", dir + "/out", "--no-history"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(file + ":4: campaign.px4: '" + dir + "/no-px4-here': no such folder"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out")) << "nothing flew";
+  // --px4 DIR stands in for the file's; its refusal names the option, in hitl sim --px4's words.
+  r = test::run_hitl({"campaign", "run", file, "--px4", dir, "--out", dir + "/out", "--no-history"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--px4: '" + dir + "' is not a PX4 SITL build: no bin/px4"), std::string::npos) << r.err;
+  const auto sim = test::run_hitl({"sim", "--px4", dir, "--duration", "1"});
+  EXPECT_NE(sim.err.find("--px4: '" + dir + "' is not a PX4 SITL build: no bin/px4"), std::string::npos) << sim.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+}
+
 }  // namespace
 }  // namespace hitl

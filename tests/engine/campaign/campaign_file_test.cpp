@@ -155,7 +155,7 @@ TEST_F(CampaignFileTest, BadValuesAreRefusedWithTheirKey) {
   EXPECT_NE(refusal("[campaign]\nname = \"a b\"\n", 2).find("campaign.name: \"a b\" is not a name"), std::string::npos);
   EXPECT_NE(refusal(head + "time_limit_s = -1\n", 3).find("campaign.time_limit_s: must be between"), std::string::npos);
   EXPECT_NE(refusal(head + "stack = \"gazebo\"\n", 3).find("campaign.stack: \"gazebo\" is not a flight stack"), std::string::npos);
-  EXPECT_NE(refusal(head + "stack = \"px4\"\n", 3).find("not supported by campaigns yet"), std::string::npos);
+  EXPECT_NE(refusal(head + "stack = \"gazebo\"\n", 3).find("(known: target, px4)"), std::string::npos);
   EXPECT_NE(refusal(head + "[matrix]\ntrajectories = [\"missing.json\"]\n", 4).find("matrix.trajectories[0]: "), std::string::npos);
   EXPECT_NE(refusal(head + "[matrix]\ntrajectories = [\"hover.json\"]\nseeds = [1, -2]\n", 5)
                 .find("matrix.seeds[1]: must be a whole number >= 0"), std::string::npos);
@@ -186,13 +186,17 @@ TEST_F(CampaignFileTest, AnEmptyMatrixIsRefused) {
 }
 
 TEST_F(CampaignFileTest, TheExamplesParse) {
-  for (const char* name : {"regression.toml", "small.toml"}) {
+  for (const char* name : {"regression.toml", "small.toml", "px4-square.toml"}) {
     auto c = load_campaign(std::string(HITL_SOURCE_DIR) + "/docs/examples/campaigns/" + name);
     ASSERT_TRUE(c) << c.error().message;
   }
   auto regression = load_campaign(std::string(HITL_SOURCE_DIR) + "/docs/examples/campaigns/regression.toml");
   ASSERT_TRUE(regression);
   EXPECT_EQ(expand(*regression).size(), 36u);  // 3 trajectories x 4 fault cases x 3 seeds
+  auto px4 = load_campaign(std::string(HITL_SOURCE_DIR) + "/docs/examples/campaigns/px4-square.toml");
+  ASSERT_TRUE(px4);
+  EXPECT_EQ(px4->stack, Stack::Px4);
+  EXPECT_EQ(expand(*px4).size(), 4u);  // square and hover x none and gps-loss, at 5x
 }
 
 TEST_F(CampaignFileTest, CriterionFiguresAreTheSummarysLeaves) {
@@ -202,6 +206,113 @@ TEST_F(CampaignFileTest, CriterionFiguresAreTheSummarysLeaves) {
                         "sim_time_s", "lockstep.fallbacks"})
     EXPECT_NE(std::find(figures.begin(), figures.end(), f), figures.end()) << f;
   EXPECT_EQ(std::find(figures.begin(), figures.end(), "flight.seed"), figures.end());
+}
+
+// --- stack = "px4" -------------------------------------------------------------------------------
+
+/// A stand-in PX4 SITL build folder: bin/px4 (executable), etc/init.d-posix/rcS and the version header.
+void make_px4_build(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir / "bin");
+  std::filesystem::create_directories(dir / "etc" / "init.d-posix");
+  std::filesystem::create_directories(dir / "src" / "lib" / "version");
+  std::ofstream(dir / "bin" / "px4") << "#!/bin/sh\n";
+  std::filesystem::permissions(dir / "bin" / "px4", std::filesystem::perms::owner_all);
+  std::ofstream(dir / "etc" / "init.d-posix" / "rcS") << "\n";
+  std::ofstream(dir / "src" / "lib" / "version" / "build_git_version.h") << "#define PX4_GIT_TAG_STR \"v1.16.0\"\n";
+}
+
+const char* kPx4Head = "[campaign]\nname = \"p\"\nstack = \"px4\"\n";
+const char* kPx4Matrix = "[matrix]\ntrajectories = [\"hover.json\"]\nspeeds = [5]\n";
+
+TEST_F(CampaignFileTest, Px4StackTakesItsBuildRelativeToTheFileAndItsParameters) {
+  make_px4_build(dir_ / "px4-build");
+  auto c = parse(std::string(kPx4Head) + "px4 = \"px4-build\"\npx4_params = { SYS_FAILURE_EN = 1, MPC_XY_VEL_MAX = 5.5 }\n" + kPx4Matrix);
+  ASSERT_TRUE(c) << c.error().message;
+  EXPECT_EQ(c->stack, Stack::Px4);
+  ASSERT_TRUE(c->px4);
+  EXPECT_EQ(c->px4->dir, (dir_ / "px4-build").string());
+  EXPECT_EQ(c->px4->line, 4);
+  ASSERT_EQ(c->px4->params.size(), 2u);
+  EXPECT_EQ(c->px4->params[0].name, "SYS_FAILURE_EN");  // the file's order
+  EXPECT_EQ(c->px4->params[0].value, "1");
+  EXPECT_EQ(c->px4->params[1].name, "MPC_XY_VEL_MAX");
+  EXPECT_EQ(c->px4->params[1].value, "5.5");
+  EXPECT_EQ(stack_version(*c), "");  // not found yet
+  ASSERT_TRUE(find_campaign_px4(*c, "")) << "the stand-in build";
+  EXPECT_EQ(stack_version(*c), "v1.16.0");
+  EXPECT_EQ(c->px4->build->program, (dir_ / "px4-build" / "bin" / "px4").string());
+  // PX4's parameters are part of a flight's id; its build is not (a new PX4 flies the same flights).
+  const auto flights = expand(*c);
+  ASSERT_EQ(flights.size(), 1u);
+  EXPECT_NE(flight_parameters(*c, flights[0]).find("stack=px4\npx4_params=SYS_FAILURE_EN=1;MPC_XY_VEL_MAX=5.5;"), std::string::npos)
+      << flight_parameters(*c, flights[0]);
+  auto other = parse(std::string(kPx4Head) + "px4 = \"elsewhere\"\npx4_params = { SYS_FAILURE_EN = 1, MPC_XY_VEL_MAX = 5.5 }\n" + kPx4Matrix);
+  ASSERT_TRUE(other);
+  EXPECT_EQ(expand(*other)[0].id, flights[0].id);
+}
+
+TEST_F(CampaignFileTest, ABadPx4FolderIsRefusedWithTheFileLineAndKeyAndWhatIsMissing) {
+  const std::string where = (dir_ / "c.toml").string() + ":5: campaign.px4: ";
+  auto c = parse(std::string(kPx4Head) + "\npx4 = \"no-such\"\n" + kPx4Matrix);
+  ASSERT_TRUE(c) << "found before the flights, not while parsing: --px4 DIR may stand in for it";
+  auto found = find_campaign_px4(*c, "");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().kind, ErrorKind::Input);
+  EXPECT_EQ(found.error().message, where + "'" + (dir_ / "no-such").string() + "': no such folder");
+
+  std::filesystem::create_directories(dir_ / "empty");
+  c = parse(std::string(kPx4Head) + "\npx4 = \"empty\"\n" + kPx4Matrix);
+  ASSERT_TRUE(c);
+  found = find_campaign_px4(*c, "");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().message, where + "'" + (dir_ / "empty").string() +
+                                       "' is not a PX4 SITL build: no bin/px4, and not a PX4 tree with build/px4_sitl_default");
+
+  // --px4 DIR over the file's: its refusal names the option, as hitl sim --px4's does.
+  found = find_campaign_px4(*c, (dir_ / "empty").string());
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().message.rfind("--px4: '" + (dir_ / "empty").string() + "' is not a PX4 SITL build: no bin/px4", 0), 0u)
+      << found.error().message;
+  make_px4_build(dir_ / "good");
+  EXPECT_TRUE(find_campaign_px4(*c, (dir_ / "good").string()));
+
+  // Neither the file nor the command line names one.
+  c = parse(std::string(kPx4Head) + kPx4Matrix);
+  ASSERT_TRUE(c);
+  found = find_campaign_px4(*c, "");
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().message.rfind((dir_ / "c.toml").string() + ":3: campaign.px4: missing: stack = \"px4\" needs px4 = \"DIR\"", 0), 0u)
+      << found.error().message;
+
+  // --px4 for a campaign against the emulated board is a mistake in the command.
+  c = parse("[campaign]\nname = \"t\"\n[matrix]\ntrajectories = [\"hover.json\"]\n");
+  ASSERT_TRUE(c);
+  found = find_campaign_px4(*c, (dir_ / "good").string());
+  ASSERT_FALSE(found);
+  EXPECT_EQ(found.error().kind, ErrorKind::Usage);
+}
+
+TEST_F(CampaignFileTest, Px4KeysAndBadParameterValuesAreRefusedWithTheirKey) {
+  const std::string target = "[campaign]\nname = \"t\"\n";
+  EXPECT_NE(refusal(target + "px4 = \"x\"\n", 3).find("campaign.px4: only with stack = \"px4\""), std::string::npos);
+  EXPECT_NE(refusal(target + "px4_params = { A = 1 }\n", 3).find("campaign.px4_params: only with stack = \"px4\""), std::string::npos);
+  const std::string head = kPx4Head;
+  EXPECT_NE(refusal(head + "px4 = 3\n", 4).find("campaign.px4: must be a string"), std::string::npos);
+  EXPECT_NE(refusal(head + "px4 = \"\"\n", 4).find("campaign.px4: is empty"), std::string::npos);
+  EXPECT_NE(refusal(head + "px4_params = 3\n", 4).find("campaign.px4_params: must be a table"), std::string::npos);
+  EXPECT_NE(refusal(head + "px4_params = { SYS_FAILURE_EN = \"on\" }\n", 4)
+                .find("campaign.px4_params.SYS_FAILURE_EN: must be a number"), std::string::npos);
+  EXPECT_NE(refusal(head + "px4_params = { SYS_FAILURE_EN = true }\n", 4)
+                .find("campaign.px4_params.SYS_FAILURE_EN: must be a number"), std::string::npos);
+  EXPECT_NE(refusal(head + "px4_params = { sys_failure_en = 1 }\n", 4).find("campaign.px4_params.sys_failure_en: "), std::string::npos);
+  EXPECT_NE(refusal(head + "px4_params = { A_NAME_LONGER_THAN_16 = 1 }\n", 4).find("campaign.px4_params.A_NAME_LONGER_THAN_16: "),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "px4_params = { A = nan }\n", 4).find("campaign.px4_params.A: must be a finite number"), std::string::npos);
+  // PX4 runs in lockstep at a stated factor: speeds above 0, given.
+  EXPECT_NE(refusal(head + "[matrix]\ntrajectories = [\"hover.json\"]\n", 4).find("matrix.speeds: missing: stack = \"px4\" runs PX4"),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "[matrix]\ntrajectories = [\"hover.json\"]\nspeeds = [5, 0]\n", 6).find("matrix.speeds[1]: stack = \"px4\""),
+            std::string::npos);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // before it by more than their spread is a regression, one within it is not.
 #include <gtest/gtest.h>
 
+#include <sqlite3.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -116,6 +117,62 @@ TEST_F(HistoryTest, AnotherFileIsRefusedNotWritten) {
   auto other = read_history(path_, "other", 5);
   ASSERT_FALSE(other);
   EXPECT_NE(other.error().message.find("no runs of campaign \"other\""), std::string::npos);
+}
+
+TEST_F(HistoryTest, ARunRecordsItsFlightStackAndPx4sVersion) {
+  record(0.10, 0.12, "v1");  // the emulated board: no version
+  c_.stack = Stack::Px4;
+  c_.px4.emplace();
+  c_.px4->build = px4::Px4Build{};
+  c_.px4->build->version = "v1.16.0";
+  record(0.11, 0.13, "v2");
+  auto h = read_history(path_, "c", 10);
+  ASSERT_TRUE(h) << h.error().message;
+  ASSERT_EQ(h->trends.size(), 1u);
+  ASSERT_EQ(h->trends[0].points.size(), 2u);
+  EXPECT_EQ(h->trends[0].points[0].stack_version, "");
+  EXPECT_EQ(h->trends[0].points[1].stack_version, "v1.16.0");
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* s = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "SELECT stack, stack_version FROM runs ORDER BY id", -1, &s, nullptr), SQLITE_OK);
+  std::vector<std::string> rows;
+  while (sqlite3_step(s) == SQLITE_ROW)
+    rows.push_back(std::string(reinterpret_cast<const char*>(sqlite3_column_text(s, 0))) + " " +
+                   reinterpret_cast<const char*>(sqlite3_column_text(s, 1)));
+  sqlite3_finalize(s);
+  sqlite3_close(db);
+  EXPECT_EQ(rows, (std::vector<std::string>{"target ", "px4 v1.16.0"}));
+}
+
+TEST_F(HistoryTest, AHistoryOfSchemaOneGainsTheStackAndKeepsItsRuns) {
+  std::filesystem::create_directories(std::filesystem::path(path_).parent_path());
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  // The tables as schema 1 made them, with one run.
+  ASSERT_EQ(sqlite3_exec(db,
+                         "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT); INSERT INTO meta VALUES('schema', '1');"
+                         "CREATE TABLE runs(id INTEGER PRIMARY KEY AUTOINCREMENT, campaign TEXT NOT NULL, file TEXT, label TEXT,"
+                         " started_utc TEXT, wall_s REAL, flights INTEGER, passed INTEGER, failed INTEGER, errors INTEGER,"
+                         " missing INTEGER, stopped INTEGER);"
+                         "CREATE TABLE flights(run INTEGER NOT NULL, flight_id TEXT, name TEXT, outcome TEXT, reason TEXT);"
+                         "CREATE TABLE verdicts(run INTEGER NOT NULL, flight_id TEXT, criterion TEXT, figure TEXT, limit_text TEXT,"
+                         " value REAL, ok INTEGER);"
+                         "INSERT INTO runs(campaign, label, started_utc, flights) VALUES('c', 'old', '2026-11-28T00:00:00Z', 2);"
+                         "INSERT INTO verdicts VALUES(1, 'x', 'tracking', 'trajectory.rms_m', '<= 1', 0.1, 1);",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  auto before = read_history(path_, "c", 10);  // read only: schema 1 as it is
+  ASSERT_TRUE(before) << before.error().message;
+  EXPECT_EQ(before->runs, 1u);
+  record(0.11, 0.13, "new");  // written: schema 2
+  auto after = read_history(path_, "c", 10);
+  ASSERT_TRUE(after) << after.error().message;
+  EXPECT_EQ(after->runs, 2u);
+  ASSERT_EQ(after->trends.size(), 1u);
+  ASSERT_EQ(after->trends[0].points.size(), 2u);
+  EXPECT_EQ(after->trends[0].points[0].label, "old");
 }
 
 }  // namespace
