@@ -149,8 +149,8 @@ struct Px4Estimate {
   /// steps, that makes PX4's height at t + d agree best with the truth's at t, a constant offset
   /// aside): its estimator's lag on one clock, near 0 when the clocks are one.
   std::optional<double> lag_s;
-  /// estimator_innovations and estimator_innovation_test_ratios (PX4's default logging writes them at
-  /// 2 Hz), the fields of kPx4InnovationFields / kPx4TestRatioFields that are not 0 throughout (a
+  /// estimator_innovations and estimator_innovation_test_ratios (PX4 v1.16 SITL's default logging
+  /// writes them at 100 Hz), the fields of kPx4InnovationFields / kPx4TestRatioFields that are not 0 throughout (a
   /// source EKF2 does not fuse stays 0: named in `innovations_zero`).
   std::vector<Px4Innovation> innovations;
   std::vector<Px4Innovation> test_ratios;

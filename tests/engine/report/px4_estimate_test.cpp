@@ -156,7 +156,7 @@ TEST(Px4Estimate, TheNewestULogBesideTheRecordingIsFound) {
 }
 
 TEST(Px4Estimate, EkfInnovationsAndTestRatiosArePlottedOnTheSameClockZeroSourcesNamed) {
-  // PX4's estimator_innovations and _test_ratios at 2 Hz (its default logging): GPS and barometer
+  // PX4's estimator_innovations and _test_ratios (here at 2 Hz): GPS and barometer
   // fused, vision not (its innovations stay 0).
   const std::string dir = ::testing::TempDir() + "px4_innovations/";
   std::filesystem::create_directories(dir);
