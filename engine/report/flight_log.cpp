@@ -408,7 +408,9 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
             ++parameters_dropped;
             break;
           }
-          log.parameters[name] = param_value_number(pv.param_value, pv.param_type);
+          const double value = param_value_number(pv.param_value, pv.param_type);
+          log.parameters[name] = value;
+          log.parameters_first.try_emplace(name, value);
           break;
         }
         case msg::Statustext::kId: {

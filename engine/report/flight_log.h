@@ -239,6 +239,7 @@ struct FlightLog {
   /// PARAM_VALUE from the vehicle (any system but the simulator), by name: the last value of each
   /// (integers decoded byte-wise, as PX4 sends them), at most ReadLimits::max_parameters names.
   std::map<std::string, double> parameters;
+  std::map<std::string, double> parameters_first;  ///< the first PARAM_VALUE of each name (a value set during the log differs)
 };
 
 inline constexpr std::array<const char*, 6> kEkfRatioNames = {"velocity", "horizontal position", "vertical position",

@@ -173,6 +173,13 @@ std::string parameters_section(const FlightLog& log) {
   for (const auto& r : t.differ)
     h << "<tr><td>" << html_escaped(r.name) << "</td><td>" << number(r.value) << "</td><td>" << number(r.default_value) << "</td></tr>\n";
   h << "</table>\n";
+  if (!t.changed.empty()) {
+    h << "<p class=\"how\">Set during this log (its last PARAM_VALUE differs from its first):</p>\n<table id=\"parameters-changed\">"
+         "<tr><th>parameter</th><th>value</th><th>first in this log</th></tr>\n";
+    for (const auto& r : t.changed)
+      h << "<tr><td>" << html_escaped(r.name) << "</td><td>" << number(r.value) << "</td><td>" << number(r.default_value) << "</td></tr>\n";
+    h << "</table>\n";
+  }
   return h.str();
 }
 

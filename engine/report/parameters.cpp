@@ -56,6 +56,10 @@ ParameterTable non_default_parameters(const FlightLog& log) {
                       "(base/contract/hitl-defaults.params, " + std::to_string(defaults.size()) +
                       " parameters); a parameter outside it has no default known to hitl";
   }
+  if (values == &log.parameters)
+    for (const auto& [name, value] : log.parameters)
+      if (const auto first = log.parameters_first.find(name); first != log.parameters_first.end() && !same(value, first->second))
+        t.changed.push_back({name, value, first->second});
   for (const auto& [name, value] : *values) {
     const auto it = defaults.find(name);
     if (it == defaults.end()) {

@@ -23,6 +23,9 @@ struct ParameterTable {
   std::string values_from;    ///< where the values came from, in words ("" : no values at all)
   std::string defaults_from;  ///< where the defaults came from, in words
   std::vector<ParameterRow> differ;  ///< by name
+  /// Set during the log (PARAM_VALUE only): its last value differs from its first; default_value is
+  /// the first. Whatever the defaults know: a parameter the emulated board's set does not have shows here.
+  std::vector<ParameterRow> changed;
   std::size_t compared = 0;          ///< values with a known default
   std::size_t without_default = 0;   ///< values whose default the source does not know
 };

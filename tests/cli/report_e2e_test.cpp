@@ -797,6 +797,36 @@ TEST(ReportE2E, PlotOfAnyFieldJoinsTheLinkedZoomOnBothPagesAndBadOnesAreNamed) {
   }
 }
 
+TEST(ReportE2E, AParameterSetThroughARecordingSessionShowsInTheParametersTable) {
+  // hitl params set through hitl sim's client port while it records: the board's PARAM_VALUE (the
+  // value read first, then its echo) are in the recording, and the report's last section says so.
+  const std::string dir = test::temp_dir();
+  std::ofstream(dir + "/hover.json") << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0},
+                                                          {"t": 6, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
+  const uint16_t hil = test::free_udp_port(), clients = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(test::free_udp_port()), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", std::to_string(clients), "--lockstep", "--speed",
+                     "3", "-t", dir + "/hover.json", "--record", dir + "/p.tlog"});
+  ASSERT_TRUE(sim.wait_for_stderr("trajectory:", 30s)) << sim.err();
+  auto set = test::run_hitl({"params", "--connect", "udp:127.0.0.1:" + std::to_string(clients), "--local-port",
+                             std::to_string(test::free_udp_port()), "set", "MPC_XY_P", "1.1"},
+                            30s);
+  EXPECT_EQ(set.exit_code, 0) << set.out << set.err;
+  EXPECT_EQ(sim.wait(90s), 0) << sim.err();
+  board.signal(SIGINT);
+  board.wait(20s);
+  auto r = test::run_hitl({"report", dir + "/p.tlog", "-o", dir + "/p.html"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = read_file(dir + "/p.html");
+  EXPECT_NE(page.find("Values: PARAM_VALUE in this log ("), std::string::npos);
+  EXPECT_NE(page.find("Defaults: the spec's HITL set that hitl target boots with"), std::string::npos);
+  EXPECT_NE(page.find("<tr><td>MPC_XY_P</td><td>1.1</td><td>0.95</td></tr>"), std::string::npos)
+      << page.substr(page.find("<h2>Parameters that differ"), 1500);
+}
+
 TEST(ReportE2E, NotATlogIsBadInputNamed) {
   const std::string dir = test::temp_dir();
   std::ofstream(dir + "/notes.txt") << "not a telemetry log\n";

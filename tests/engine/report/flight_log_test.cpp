@@ -426,6 +426,11 @@ TEST(FlightLog, ParamValueIsReadByteWiseLastValueKeptAndTheTableSaysWhatDiffers)
   EXPECT_EQ(section.find("<td>CAL_ACC0_ID</td>"), std::string::npos) << "at its default";
   EXPECT_NE(section.find("1 of 2 differ; 1 without a known default, not compared."), std::string::npos) << section;
   EXPECT_NE(section.find("base/contract/hitl-defaults.params"), std::string::npos);
+  // Set during the log: SYS_HITL 1 -> 0, whatever the defaults say.
+  EXPECT_NE(section.find("<table id=\"parameters-changed\"><tr><th>parameter</th><th>value</th><th>first in this log</th></tr>\n"
+                         "<tr><td>SYS_HITL</td><td>0</td><td>1</td></tr>"),
+            std::string::npos)
+      << section;
 }
 
 }  // namespace
