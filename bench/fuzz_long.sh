@@ -14,7 +14,7 @@ cmake --build "$build_dir" -j"$jobs" >/dev/null
 
 status=0
 summary=()
-for target in frame_parser tlog config vehicle_files scenario board_replies adb_framing vio_server link_spec px4_console ulog campaign_file fault_text; do
+for target in frame_parser tlog config vehicle_files scenario board_replies adb_framing vio_server link_spec px4_console ulog campaign_file fault_text field_plot; do
   if line=$("$root/tests/fuzz/run.sh" "$build_dir" "$seconds" "$target" 2>&1 | tail -1); then
     summary+=("$line")
   else

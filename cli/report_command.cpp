@@ -6,9 +6,14 @@
 #include "cli/commands.h"
 #include "cli/report_output.h"
 #include "cli/version.h"
+#include "base/mavlink/message_set.h"
+#include "engine/report/field_expression.h"
 #include "engine/report/report.h"
 
 namespace hitl::cli {
+
+/// --plot given more often than this is refused (each is a plot on the page).
+constexpr std::size_t kMaxFieldPlots = 20;
 
 std::string default_report_path(const std::string& tlog_path) {
   const std::string ext = ".tlog";
@@ -74,6 +79,7 @@ void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) 
     bool no_ulog = false;
     bool static_page = false;
     std::string dygraphs = report::kDebianDygraphsDir;
+    std::vector<std::string> plots;
   };
   auto o = std::make_shared<ReportOptions>();
   auto* sub = app.add_subcommand(
@@ -98,12 +104,33 @@ void add_report_command(CLI::App& app, GlobalOptions& options, RunState& state) 
       ->capture_default_str()
       ->type_name("DIR")
       ->excludes(static_page);
+  sub->add_option("--plot", o->plots,
+                  "One more time plot of MAVLink fields, as MAVExplorer draws them: series separated by commas, each "
+                  "MESSAGE.field (an array's element: MESSAGE.field[0]) with + - * / numbers, parentheses and degrees() "
+                  "radians() abs() sqrt() ('ATTITUDE.roll,ATTITUDE.pitch', 'GLOBAL_POSITION_INT.relative_alt/1000'); repeatable")
+      ->type_name("EXPR,...");
   sub->footer("Prints the page's path on stdout (--json: a summary line with path, bytes, plots, seconds, interactive, static_because, lacks, skipped, ulog). "
               "Needs gnuplot (Debian: gnuplot-nox) and, for the interactive page, libjs-dygraphs.\n"
               "Exit: 0 written, 2 bad input (not a tlog, a --ulog that is no ULog or not of this recording) or gnuplot missing, 1 drawing or writing failed.");
   sub->callback([&options, &state, o]() {
     const std::string out = o->output.empty() ? default_report_path(o->tlog) : o->output;
-    auto r = write_report_and_say(options, "report", o->tlog, out, {o->ulog, !o->no_ulog, o->static_page, o->dygraphs});
+    report::ReportOptions report_options{o->ulog, !o->no_ulog, o->static_page, o->dygraphs};
+    if (o->plots.size() > kMaxFieldPlots) {
+      log_error("report", "--plot given " + std::to_string(o->plots.size()) + " times: at most " + std::to_string(kMaxFieldPlots));
+      state.exit_code = kExitUsage;
+      return;
+    }
+    const auto messages = mavlink::MessageSet::compiled();
+    for (const auto& text : o->plots) {
+      auto spec = report::parse_field_plot(text, messages);
+      if (!spec) {
+        log_error("report", "--plot " + spec.error().message);
+        state.exit_code = exit_code(spec.error());
+        return;
+      }
+      report_options.field_plots.push_back(std::move(*spec));
+    }
+    auto r = write_report_and_say(options, "report", o->tlog, out, report_options);
     if (!r) {
       state.exit_code = exit_code(r.error());
       return;

@@ -61,7 +61,7 @@ _hitl_options() {
         'campaign k8s') echo '-h --help --image --path-in-image --claim -j --parallelism -o --output --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign slurm') echo '-h --help --out --partition -j --max-running --history --label --no-history --version --json -v --verbose -q --quiet --dialect --config' ;;
         'campaign history') echo '-h --help --history --last --version --json -v --verbose -q --quiet --dialect --config' ;;
-        'report') echo '-h --help -o --output --ulog --no-ulog --static --dygraphs --version --json -v --verbose -q --quiet --dialect --config' ;;
+        'report') echo '-h --help -o --output --ulog --no-ulog --static --dygraphs --plot --version --json -v --verbose -q --quiet --dialect --config' ;;
         'completion') echo '-h --help --version --json -v --verbose -q --quiet --dialect --config' ;;
     esac
 }
@@ -263,6 +263,7 @@ _hitl_value() {
         'report|-o'|'report|--output') echo 'file *.html' ;;
         'report|--ulog') echo 'file' ;;
         'report|--dygraphs') echo 'text' ;;
+        'report|--plot') echo 'text' ;;
     esac
 }
 

@@ -18,6 +18,7 @@
 #include "engine/mavlink/tlog.h"
 #include "engine/mavlink/tlog_timeline.h"
 #include "engine/report/fault_windows.h"
+#include "engine/report/parameters.h"
 #include "engine/telemetry/px4_mode.h"
 
 namespace hitl::report {
@@ -172,7 +173,7 @@ std::string source_name(const mavlink::Frame& f, uint8_t sim_id) { return source
 
 }  // namespace
 
-Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& limits) {
+Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& limits, const std::vector<FieldPlotSpec>& field_plots) {
   const auto messages = mavlink::MessageSet::compiled();
   // Pass 1: the simulator's clock.
   Clock clock;
@@ -209,6 +210,20 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   FlightLog log;
   log.path = path;
   log.simulated_time = clock.simulated();
+  // hitl report --plot: each series by its message's id.
+  std::map<uint32_t, std::vector<std::pair<const FieldExpression*, FieldSeries*>>> field_series_of;
+  log.field_plots.resize(field_plots.size());
+  for (std::size_t p = 0; p < field_plots.size(); ++p) {
+    log.field_plots[p].text = field_plots[p].text;
+    log.field_plots[p].series.resize(field_plots[p].series.size());
+  }
+  for (std::size_t p = 0; p < field_plots.size(); ++p)
+    for (std::size_t k = 0; k < field_plots[p].series.size(); ++k) {
+      const FieldExpression& e = field_plots[p].series[k];
+      FieldSeries& s = log.field_plots[p].series[k];
+      s.title = e.text, s.message = e.message, s.units = e.units;
+      field_series_of[e.msgid].emplace_back(&e, &s);
+    }
   Arrivals sensor{"HIL_SENSOR", 1.0 / kStepPeriod_s, {}, {}};
   Arrivals gps{"HIL_GPS", std::nullopt, {}, {}};
   Arrivals vio{"ODOMETRY (VIO)", kVioRate_hz, {}, {}};
@@ -218,6 +233,7 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   std::map<uint8_t, VehicleState> vehicles;
   std::optional<uint8_t> mode_vehicle;  // whose modes are drawn as bands: the first vehicle heard
   uint64_t events_dropped = 0;
+  uint64_t parameters_dropped = 0;
   auto event = [&](double t_s, Severity severity, std::string source, std::string text) {
     if (log.events.size() >= limits.max_events) {
       ++events_dropped;
@@ -261,6 +277,13 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
     parser.parse_datagram(r.frame, [&](const mavlink::Frame& f) {
       if (f.desc == nullptr) return;  // an id nobody described, its checksum unchecked: counted by the parser
       ++log.frames;
+      if (!field_series_of.empty())
+        if (const auto it = field_series_of.find(f.msgid); it != field_series_of.end())
+          for (const auto& [expression, series] : it->second) {
+            const double v = expression->evaluate(f.payload.data());
+            if (std::isfinite(v)) add(series->values, t_s, v);
+            else ++series->not_finite;
+          }
       const bool from_sim = f.sysid == sim_id;
       const bool from_pilot = f.compid == mavlink::kCompIdPathPlanner;  // pilot_record.h: under sim -t or fly trajectory
       switch (f.msgid) {
@@ -377,6 +400,19 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
           for (std::size_t k = 0; k < ratios.size(); ++k) add(log.ekf_ratios[k], t_s, ratios[k]);
           break;
         }
+        case msg::ParamValue::kId: {
+          if (from_sim) break;
+          const auto pv = f.as<msg::ParamValue>();
+          const std::string name(mavlink::text_of(pv.param_id));
+          if (log.parameters.size() >= limits.max_parameters && !log.parameters.count(name)) {
+            ++parameters_dropped;
+            break;
+          }
+          const double value = param_value_number(pv.param_value, pv.param_type);
+          log.parameters[name] = value;
+          log.parameters_first.try_emplace(name, value);
+          break;
+        }
         case msg::Statustext::kId: {
           for (const auto& t : statustexts.on_frame(f, t_s)) statustext_event(t);
           break;
@@ -464,6 +500,8 @@ Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& l
   else
     lacks(log.loop_latency.p99_us.size() == 0, "the loop latency (no HIL_SENSOR was answered: sim_lat99 stayed -1)");
   if (cut) log.missing.push_back("records after the first " + std::to_string(limits.max_records) + " (the log was cut there)");
+  if (parameters_dropped > 0)
+    log.missing.push_back(std::to_string(parameters_dropped) + " PARAM_VALUE of names after the first " + std::to_string(limits.max_parameters));
   if (events_dropped > 0) log.missing.push_back(std::to_string(events_dropped) + " events after the first " + std::to_string(limits.max_events));
   return log;
 }

@@ -12,12 +12,14 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "base/common/expected.h"
 #include "base/common/severity.h"
+#include "engine/report/field_expression.h"
 
 namespace hitl::report {
 
@@ -122,6 +124,14 @@ struct LoopLatencySeries {
   bool reported = false;  ///< the status carried sim_lat99 at all (-1 included)
 };
 
+/// One of PX4's EKF innovations or innovation test ratios from its ULog (px4_estimate.h's table).
+struct Px4Innovation {
+  std::string field;   ///< the topic's field, "gps_hvel[0]"
+  std::string name;    ///< "GPS velocity north"
+  std::string group;   ///< the plot it goes in: "velocity", "position", "height", "magnetometer", "heading"
+  Series value;        ///< on the report's time axis; an innovation in its unit (heading in degrees)
+};
+
 /// PX4's own estimate from its ULog (hitl report --ulog; px4_estimate.h), on the report's time axis:
 /// in lockstep PX4 SITL sets its clock to each HIL_SENSOR's time_usec, so a ULog timestamp of T us
 /// is the simulator's T * 1e-6 s. NED metres from PX4's local origin (home, 0 m on the ground).
@@ -139,7 +149,32 @@ struct Px4Estimate {
   /// steps, that makes PX4's height at t + d agree best with the truth's at t, a constant offset
   /// aside): its estimator's lag on one clock, near 0 when the clocks are one.
   std::optional<double> lag_s;
+  /// estimator_innovations and estimator_innovation_test_ratios (PX4 v1.16 SITL's default logging
+  /// writes them at 100 Hz), the fields of kPx4InnovationFields / kPx4TestRatioFields that are not 0 throughout (a
+  /// source EKF2 does not fuse stays 0: named in `innovations_zero`).
+  std::vector<Px4Innovation> innovations;
+  std::vector<Px4Innovation> test_ratios;
+  std::vector<std::string> innovations_zero;  ///< "vision velocity north", ...: 0 throughout, not drawn
+  std::string innovations_missing;            ///< why there are none ("" : read), e.g. "not in this log"
+  std::map<std::string, double> parameters;          ///< the ULog's parameters ('P'), the last value of each
+  std::map<std::string, double> parameter_defaults;  ///< its logged defaults ('Q'): the current setup's, else the system's
   std::vector<std::string> notes;  ///< the reader's notes and what was not drawn, in words
+};
+
+/// One series of a --plot (field_expression.h): its expression's value on each frame of its message,
+/// from every sender; a value that is not finite (a division by a field that was 0) is left out, counted.
+struct FieldSeries {
+  std::string title;         ///< the expression as written
+  std::string message;       ///< "ATTITUDE"
+  std::string units;         ///< the field's units when the series is one field alone
+  Series values;
+  uint64_t not_finite = 0;
+};
+
+/// One --plot: its value as given and its series.
+struct FieldPlot {
+  std::string text;
+  std::vector<FieldSeries> series;
 };
 
 /// The vehicle as its first HEARTBEAT said it.
@@ -200,6 +235,11 @@ struct FlightLog {
   std::vector<std::string> missing;       ///< what a report cannot draw from this log, in words
   std::vector<std::string> skipped;       ///< what a damaged log holds that is not drawn, in words
   std::optional<Px4Estimate> px4;         ///< PX4's ULog when the report was given one (px4_estimate.h)
+  std::vector<FieldPlot> field_plots;     ///< hitl report --plot, in the order given
+  /// PARAM_VALUE from the vehicle (any system but the simulator), by name: the last value of each
+  /// (integers decoded byte-wise, as PX4 sends them), at most ReadLimits::max_parameters names.
+  std::map<std::string, double> parameters;
+  std::map<std::string, double> parameters_first;  ///< the first PARAM_VALUE of each name (a value set during the log differs)
 };
 
 inline constexpr std::array<const char*, 6> kEkfRatioNames = {"velocity", "horizontal position", "vertical position",
@@ -208,10 +248,13 @@ inline constexpr std::array<const char*, 6> kEkfRatioNames = {"velocity", "horiz
 struct ReadLimits {
   uint64_t max_records = 50'000'000;  ///< a larger log is read this far and said to be cut
   std::size_t max_events = 2000;       ///< further events are counted, not kept
+  std::size_t max_parameters = 8192;   ///< PARAM_VALUE names kept (further names counted in `missing`)
 };
 
 /// Reads the tlog at `path` (two passes: the simulator's clock, then the series). An Error when it
-/// cannot be opened or holds no MAVLink frame at all.
-Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& limits = {});
+/// cannot be opened or holds no MAVLink frame at all. `field_plots` (hitl report --plot) are evaluated
+/// on every frame of their messages, into FlightLog::field_plots.
+Expected<FlightLog> read_flight_log(const std::string& path, const ReadLimits& limits = {},
+                                    const std::vector<FieldPlotSpec>& field_plots = {});
 
 }  // namespace hitl::report

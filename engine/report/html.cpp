@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "engine/report/fault_windows.h"
+#include "engine/report/parameters.h"
 
 namespace hitl::report {
 namespace {
@@ -162,6 +163,37 @@ std::string events_section(const FlightLog& log) {
   return h.str();
 }
 
+std::string parameters_section(const FlightLog& log) {
+  const ParameterTable t = non_default_parameters(log);
+  auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.7g", v);
+    return std::string(text);
+  };
+  std::ostringstream h;
+  h << "<h2>Parameters that differ from the defaults</h2>\n";
+  if (t.values_from.empty()) {
+    h << "<p id=\"parameters-none\" class=\"lacking\">no PARAM_VALUE in this log (hitl params show, a ground station or the "
+         "session's own reads write them into a recording)</p>\n";
+    return h.str();
+  }
+  h << "<p class=\"how\" id=\"parameters-from\">Values: " << html_escaped(t.values_from) << ". Defaults: " << html_escaped(t.defaults_from)
+    << ". " << t.differ.size() << " of " << t.compared << " differ";
+  if (t.without_default > 0) h << "; " << t.without_default << " without a known default, not compared";
+  h << ".</p>\n<table id=\"parameters\"><tr><th>parameter</th><th>value</th><th>default</th></tr>\n";
+  for (const auto& r : t.differ)
+    h << "<tr><td>" << html_escaped(r.name) << "</td><td>" << number(r.value) << "</td><td>" << number(r.default_value) << "</td></tr>\n";
+  h << "</table>\n";
+  if (!t.changed.empty()) {
+    h << "<p class=\"how\">Set during this log (its last PARAM_VALUE differs from its first):</p>\n<table id=\"parameters-changed\">"
+         "<tr><th>parameter</th><th>value</th><th>first in this log</th></tr>\n";
+    for (const auto& r : t.changed)
+      h << "<tr><td>" << html_escaped(r.name) << "</td><td>" << number(r.value) << "</td><td>" << number(r.default_value) << "</td></tr>\n";
+    h << "</table>\n";
+  }
+  return h.str();
+}
+
 std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, const std::vector<std::string>& svgs) {
   std::ostringstream h;
   h << page_start(log, "") << summary_sections(log);
@@ -171,7 +203,7 @@ std::string report_html(const FlightLog& log, const std::vector<Plot>& plots, co
        "style=\"border-color:#ff7f0e\"></i>warning</span><span><i class=\"swatch\" style=\"border-color:#d62728\"></i>error</span></p>\n";
   for (std::size_t i = 0; i < plots.size() && i < svgs.size(); ++i)
     h << (plots[i].series.empty() ? lacking_figure(plots[i]) : svg_figure(plots[i], svgs[i]));
-  h << events_section(log) << "</body></html>\n";
+  h << events_section(log) << parameters_section(log) << "</body></html>\n";
   return h.str();
 }
 

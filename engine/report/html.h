@@ -23,6 +23,9 @@ std::string page_start(const FlightLog& log, const std::string& extra_head);
 std::string summary_sections(const FlightLog& log);
 /// The events table.
 std::string events_section(const FlightLog& log);
+/// "Parameters that differ from the defaults" (parameters.h): the table, where its values and defaults
+/// came from, or "no PARAM_VALUE in this log".
+std::string parameters_section(const FlightLog& log);
 /// <figure id="plot-ID" class="CSS_CLASS" data-series="..."> `inner` <figcaption>note</figcaption></figure>.
 std::string figure_html(const Plot& plot, const std::string& inner, const std::string& css_class = "");
 /// A plot the log has no data for, in its place: <figure id="lacks-ID" class="lacking"> its title

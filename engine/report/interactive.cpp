@@ -118,7 +118,7 @@ std::string interactive_html(const FlightLog& log, const std::vector<Plot>& plot
       h << svg_figure(plots[i], svgs[i]);
     }
   }
-  h << events_section(log);
+  h << events_section(log) << parameters_section(log);
   h << "<script type=\"application/json\" id=\"hitl-data\">" << data_json(log, plots) << "</script>\n";
   h << "<script>" << library.script << "</script>\n<script>" << library.synchronizer << "</script>\n<script>" << kPageScript
     << "</script>\n</body></html>\n";

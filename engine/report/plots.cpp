@@ -325,6 +325,66 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     p.sources = "ESTIMATOR_STATUS from the vehicle";
     push(std::move(p));
   }
+  if (log.px4) {
+    // PX4's EKF2 from its ULog: its innovations (measurement minus prediction) by kind, and its test ratios.
+    const Px4Estimate& px4 = *log.px4;
+    const std::array<std::tuple<const char*, const char*, const char*>, 5> groups = {{{"velocity", "velocity", "innovation (m/s)"},
+                                                                                      {"position", "horizontal position", "innovation (m)"},
+                                                                                      {"height", "height", "innovation (m)"},
+                                                                                      {"magnetometer", "magnetometer", "innovation (gauss)"},
+                                                                                      {"heading", "heading", "innovation (deg)"}}};
+    const std::string zero = px4.innovations_zero.empty() ? "" : "0 throughout, not drawn (not fused): " + [&] {
+      std::string z;
+      for (const auto& name : px4.innovations_zero) z += (z.empty() ? "" : ", ") + name;
+      return z;
+    }();
+    bool any = false;
+    for (const auto& [group, words, y_label] : groups) {
+      Plot p{std::string("px4-innovations-") + group, std::string("PX4's EKF innovations (ULog): ") + words, time_label, y_label, {}, true, false, ""};
+      for (const auto& i : px4.innovations)
+        if (i.group == group) add_if(p, thinned(i.name, SeriesStyle::Plain, i.value.t_s, i.value.value, n));
+      p.sources = "PX4's ULog estimator_innovations";
+      if (p.series.empty()) continue;  // a kind EKF2 did not fuse: named under the first plot
+      if (!any && !zero.empty()) p.note = zero;
+      any = true;
+      push(std::move(p));
+    }
+    Plot r{"px4-test-ratios", "PX4's EKF innovation test ratios (ULog)", time_label, "test ratio (1: rejected)", {}, true, false, ""};
+    for (const auto& i : px4.test_ratios) add_if(r, thinned(i.name, SeriesStyle::Plain, i.value.t_s, i.value.value, n));
+    r.sources = "PX4's ULog estimator_innovation_test_ratios";
+    if (!any) {
+      Plot p{"px4-innovations", "PX4's EKF innovations (ULog)", time_label, "innovation", {}, true, false, ""};
+      p.sources = "PX4's ULog estimator_innovations" +
+                  (px4.innovations_missing.empty() ? std::string(" other than 0") : " (" + px4.innovations_missing + ")");
+      push(std::move(p));
+    }
+    push(std::move(r));
+  }
+  for (std::size_t k = 0; k < log.field_plots.size(); ++k) {
+    const FieldPlot& f = log.field_plots[k];
+    Plot p{"field-" + std::to_string(k + 1), f.text, time_label, "value", {}, true, false, ""};
+    std::string messages, units, left_out, absent;
+    bool one_unit = true;
+    for (const auto& s : f.series) {
+      add_if(p, thinned(s.title, SeriesStyle::Plain, s.values.t_s, s.values.value, n));
+      if (messages.find(s.message) == std::string::npos) messages += (messages.empty() ? "" : ", ") + s.message;
+      if (&s == &f.series.front()) units = s.units;
+      one_unit = one_unit && !s.units.empty() && s.units == units;
+      if (s.not_finite > 0)
+        left_out += (left_out.empty() ? "" : ", ") + std::to_string(s.not_finite) + " of " + s.title;
+      if (s.values.size() == 0 && s.not_finite == 0) absent += (absent.empty() ? "" : ", ") + s.title;
+    }
+    if (one_unit) p.y_label = units;
+    p.sources = messages + " (every sender; hitl report --plot)";
+    if (!left_out.empty()) p.note = "values that are not finite left out: " + left_out;
+    if (!absent.empty() && !p.series.empty())
+      p.note += std::string(p.note.empty() ? "" : "; ") + "not drawn, its message not in this log: " + absent;
+    if (p.series.empty()) {
+      if (!options.keep_lacking) continue;
+      p.sources = messages;  // "this log has no ATTITUDE"
+    }
+    push(std::move(p));
+  }
   for (auto& p : plots) {
     if (p.time_axis) {
       p.x_min = log.start_s;

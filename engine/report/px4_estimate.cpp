@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string_view>
 
 #include "engine/frames/frames.h"
 #include "engine/ulog/ulog.h"
@@ -77,15 +78,24 @@ Expected<Px4Estimate> read_px4_estimate(const std::string& ulog_path, const Flig
   if (!log.simulated_time)
     return Error::input("PX4's ULog '" + ulog_path + "' cannot be placed on this recording's time: it has no simulator's clock "
                         "(HIL_SENSOR from a simulator)");
-  auto u = ulog::read_ulog(ulog_path, {{"vehicle_local_position", {"x", "y", "z", "xy_valid", "z_valid"}, 0},
-                                       {"vehicle_attitude", {"q[0]", "q[1]", "q[2]", "q[3]"}, 0},
-                                       {"vehicle_rates_setpoint", {"roll", "pitch", "yaw"}, 0},
-                                       {"vehicle_angular_velocity", {"xyz[0]", "xyz[1]", "xyz[2]"}, 0}});
+  std::vector<ulog::Request> requests = {{"vehicle_local_position", {"x", "y", "z", "xy_valid", "z_valid"}, 0},
+                                         {"vehicle_attitude", {"q[0]", "q[1]", "q[2]", "q[3]"}, 0},
+                                         {"vehicle_rates_setpoint", {"roll", "pitch", "yaw"}, 0},
+                                         {"vehicle_angular_velocity", {"xyz[0]", "xyz[1]", "xyz[2]"}, 0}};
+  // EKF2's innovations and test ratios, one request a field: a PX4 without one of them keeps the rest.
+  const std::size_t innovations_at = requests.size();
+  for (const auto& f : kPx4InnovationFields) requests.push_back({"estimator_innovations", {f.field}, 0});
+  const std::size_t ratios_at = requests.size();
+  for (const auto& f : kPx4TestRatioFields) requests.push_back({"estimator_innovation_test_ratios", {f.field}, 0});
+  auto u = ulog::read_ulog(ulog_path, requests);
   if (!u) return u.error();
   Px4Estimate px4;
   px4.path = ulog_path;
   px4.version = version_of(*u);
   px4.notes = u->notes;
+  px4.parameters = u->parameters;
+  for (const auto& [name, d] : u->parameter_defaults)
+    if (d.current_setup || d.system) px4.parameter_defaults[name] = d.current_setup ? *d.current_setup : *d.system;
   const auto& pos = u->series[0];
   const auto& att = u->series[1];
   if (!pos.missing.empty()) px4.notes.push_back("vehicle_local_position: " + pos.missing);
@@ -129,6 +139,32 @@ Expected<Px4Estimate> read_px4_estimate(const std::string& ulog_path, const Flig
       track->yaw_deg_s.push_back(series->values[2][i] * kRadToDeg);
     }
   }
+  // EKF2's innovations and test ratios on the same clock; a field 0 throughout is a source not fused.
+  auto innovations = [&](std::size_t at, const auto& fields, std::vector<Px4Innovation>& out) {
+    std::size_t k = at;
+    for (const auto& f : fields) {
+      const auto& series = u->series[k++];
+      if (!series.missing.empty()) {
+        if (px4.innovations_missing.empty()) px4.innovations_missing = series.request.topic + ": " + series.missing;
+        continue;
+      }
+      Px4Innovation innovation{f.field, f.name, f.group, {}};
+      const double scale = std::string_view(f.unit) == "deg" ? kRadToDeg : 1.0;
+      bool nonzero = false;
+      for (std::size_t i = 0; i < series.size(); ++i) {
+        const double t_s = static_cast<double>(series.timestamp_us[i]) * 1e-6;
+        const double v = series.values[0][i] * scale;
+        if (t_s < first_s || t_s > last_s || !std::isfinite(v)) continue;
+        nonzero = nonzero || v != 0;
+        innovation.value.t_s.push_back(t_s);
+        innovation.value.value.push_back(v);
+      }
+      if (nonzero) out.push_back(std::move(innovation));
+      else if (series.size() > 0 && &out == &px4.innovations) px4.innovations_zero.push_back(f.name);
+    }
+  };
+  innovations(innovations_at, kPx4InnovationFields, px4.innovations);
+  innovations(ratios_at, kPx4TestRatioFields, px4.test_ratios);
   if (pos.size() > 0 && outside == pos.size())
     return Error::input("PX4's ULog '" + ulog_path + "' is of another time: its vehicle_local_position runs from " +
                         std::to_string(static_cast<double>(pos.timestamp_us.front()) * 1e-6) + " to " +

@@ -17,7 +17,7 @@ namespace hitl::report {
 
 Expected<ReportResult> write_report(const std::string& tlog_path, const std::string& html_path, const ReportOptions& options) {
   const double start_s = monotonic_s();
-  auto log = read_flight_log(tlog_path);
+  auto log = read_flight_log(tlog_path, {}, options.field_plots);
   if (!log) return log.error();
   log->generator = options.generator;
   std::string ulog_path = options.ulog_path;

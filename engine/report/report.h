@@ -19,6 +19,7 @@ struct ReportOptions {
   bool static_page = false;  ///< --static: gnuplot's SVGs, no script (else the interactive page, interactive.h)
   std::string dygraphs_dir = kDebianDygraphsDir;  ///< --dygraphs: where libjs-dygraphs' files are
   std::string generator;   ///< "hitl 0.1.0": said in the page's header ("" : not said)
+  std::vector<FieldPlotSpec> field_plots;  ///< --plot: one plot each, after the report's own (field_expression.h)
 };
 
 struct ReportResult {

@@ -154,7 +154,7 @@ class Reader {
       case 'I': return info(bytes, 0, false);
       case 'M': return info(bytes, 1, false);
       case 'P': return info(bytes, 0, true);
-      case 'Q': return;  // default parameters: not drawn
+      case 'Q': return parameter_default(bytes);
       case 'A': return subscribe(p);
       case 'D': return data(p);
       case 'L': return logged(p, 0);
@@ -184,6 +184,27 @@ class Reader {
     }
     format_bytes_ += text.size();
     formats_[f->name] = std::move(*f);
+  }
+
+  /// 'Q': uint8 default_types (bit 0 the system's default, bit 1 the current setup's), then as 'P'.
+  void parameter_default(std::string_view b) {
+    if (b.size() < 2) return void(++log_.bad_messages);
+    const auto types = static_cast<uint8_t>(b[0]);
+    const std::size_t key_len = static_cast<uint8_t>(b[1]);
+    if (b.size() < 2 + key_len) return void(++log_.bad_messages);
+    const std::string_view key = b.substr(2, key_len), value = b.substr(2 + key_len);
+    const auto space = key.find(' ');
+    if (space == std::string_view::npos) return void(++log_.bad_messages);
+    const std::string_view type = key.substr(0, space);
+    const auto basic = basic_type(type);
+    if (!basic || value.size() < basic_size(*basic)) return void(++log_.bad_messages);
+    const std::string n = text_of(key.substr(space + 1), 64);
+    if (log_.parameter_defaults.size() >= limits_.max_parameters && !log_.parameter_defaults.count(n))
+      return void(++parameters_dropped_);
+    const double v = decode_basic(*basic, reinterpret_cast<const uint8_t*>(value.data()));
+    auto& d = log_.parameter_defaults[n];
+    if (types & kDefaultOfSystem) d.system = v;
+    if (types & kDefaultOfCurrentSetup) d.current_setup = v;
   }
 
   /// 'I' / 'M' / 'P': [skip bytes] uint8 key_len, key "type name", value.

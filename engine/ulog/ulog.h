@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <istream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,14 @@ struct LoggedString {
   std::string text;
 };
 
+/// A parameter's defaults as PX4 logged them ('Q', only for a parameter whose value differs from one).
+inline constexpr uint8_t kDefaultOfSystem = 1 << 0;        ///< the firmware's own default
+inline constexpr uint8_t kDefaultOfCurrentSetup = 1 << 1;  ///< the default of the current setup (the airframe's)
+struct ParameterDefault {
+  std::optional<double> system;
+  std::optional<double> current_setup;
+};
+
 struct ULogFile {
   std::string path;
   uint8_t version = 0;
@@ -72,6 +81,7 @@ struct ULogFile {
   uint64_t bytes = 0;                           ///< read
   std::map<std::string, std::string> info;      ///< 'I' and 'M' by name ("ver_sw" -> "..."): text, numbers printed
   std::map<std::string, double> parameters;     ///< 'P', the last value of each
+  std::map<std::string, ParameterDefault> parameter_defaults;  ///< 'Q' by name (bounded with `parameters`)
   std::vector<std::string> topics;              ///< subscribed, "name" or "name/N" for instance N > 0, in order
   std::vector<TopicSeries> series;              ///< one per request, in the requests' order
   std::vector<LoggedString> strings;

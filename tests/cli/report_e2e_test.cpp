@@ -674,6 +674,124 @@ TEST(ReportE2E, PX4sULogIsMergedGivenOrFoundBesideTheRecordingAndABadOneIsNamed)
       << j.dump();
 }
 
+/// Zooms the first time plot to 2 s and reads every time plot's x range after, and the --plot plots'
+/// series as dygraphs holds them (their labels and the rows drawn).
+constexpr const char* kFieldPlotProbe = R"(out.ids=r.ids;
+var g=r.graphs[0],x=g.xAxisRange(),a=x[0]+0.4*(x[1]-x[0]);out.zoom=[a,a+2];g.updateOptions({dateWindow:out.zoom});
+out.after=r.graphs.map(function(o){return o.xAxisRange()});
+out.fields=r.ids.map(function(id,i){return id.indexOf('field-')==0?{id:id,labels:r.graphs[i].getLabels(),rows:r.graphs[i].numRows()}:null}).filter(function(f){return f});
+out.canvases=document.querySelectorAll('figure.time-plot canvas').length;)";
+
+TEST(ReportE2E, PlotOfAnyFieldJoinsTheLinkedZoomOnBothPagesAndBadOnesAreNamed) {
+  // hitl report --plot on a recorded flight (hitl sim against hitl target): the named fields as one
+  // more time plot each, drawn by Chromium without an error, following the zoom of the others.
+  const std::string dir = test::temp_dir();
+  const std::string tlog = record_hover_against_target(dir, "f.tlog", 4);
+  ASSERT_FALSE(tlog.empty());
+  auto r = test::run_hitl({"--json", "report", tlog, "--plot", "ATTITUDE.roll, ATTITUDE.pitch", "--plot",
+                           "HIL_ACTUATOR_CONTROLS.controls[0]*100", "--plot", "SERIAL_CONTROL.baudrate", "-o", dir + "/f.html"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = read_file(dir + "/f.html");
+  const auto data = page_data(page);
+  ASSERT_FALSE(data.is_null());
+  std::map<std::string, nlohmann::json> plots;
+  for (const auto& p : data["plots"]) plots[p["id"]] = p;
+  ASSERT_TRUE(plots.count("field-1")) << "the first --plot";
+  EXPECT_EQ(plots["field-1"]["title"], "ATTITUDE.roll, ATTITUDE.pitch");
+  EXPECT_EQ(plots["field-1"]["y_label"], "rad") << "both one field of one unit";
+  ASSERT_EQ(plots["field-1"]["series"].size(), 2u);
+  EXPECT_EQ(plots["field-1"]["series"][0]["title"], "ATTITUDE.roll");
+  EXPECT_EQ(plots["field-1"]["series"][1]["title"], "ATTITUDE.pitch");
+  EXPECT_GT(plots["field-1"]["series"][0]["t"].size(), 20u);
+  // The motor command in percent: 0 to 100, hovering above 20.
+  ASSERT_TRUE(plots.count("field-2"));
+  double high = 0;
+  for (const auto& y : plots["field-2"]["series"][0]["y"]) {
+    if (y.is_null()) continue;
+    EXPECT_GE(y.get<double>(), 0.0);
+    EXPECT_LE(y.get<double>(), 100.0);
+    high = std::max(high, y.get<double>());
+  }
+  EXPECT_GT(high, 20.0);
+  // Each figure claims the series it holds (points and samples), as every plot does; a message the
+  // log lacks keeps the plot's place.
+  const auto figures = figures_of(page);
+  ASSERT_TRUE(figures.count("field-1"));
+  for (const auto& c : figures.at("field-1")) EXPECT_EQ(c.points, c.drawn) << c.title;
+  EXPECT_NE(page.find("<figure id=\"lacks-field-3\" class=\"lacking\">"), std::string::npos) << "no shell was used: no SERIAL_CONTROL";
+  EXPECT_NE(page.find("this log has no SERIAL_CONTROL"), std::string::npos);
+  // The last section: the parameters (a hitl sim recording: none read over its HIL link).
+  EXPECT_NE(page.find("<h2>Parameters that differ from the defaults</h2>"), std::string::npos);
+
+  // The static page draws them too (gnuplot's SVG, the series by name).
+  auto static_run = test::run_hitl({"report", tlog, "--static", "--plot", "ATTITUDE.roll,ATTITUDE.pitch", "-o", dir + "/s.html"});
+  ASSERT_EQ(static_run.exit_code, 0) << static_run.err;
+  const auto static_figures = figures_of(read_file(dir + "/s.html"));
+  ASSERT_TRUE(static_figures.count("field-1"));
+  ASSERT_EQ(static_figures.at("field-1").size(), 2u);
+  for (const auto& c : static_figures.at("field-1")) {
+    EXPECT_EQ(c.title.rfind("ATTITUDE.", 0), 0u) << c.title;
+    EXPECT_EQ(c.points, c.drawn) << c.title;
+  }
+
+  // Bad values: exit 2, the value and the place named, nothing written.
+  for (const auto& [value, said] : std::vector<std::pair<std::string, std::string>>{
+           {"ATTITUDE.rol", "hitl report: --plot 'ATTITUDE.rol' at character 10: ATTITUDE has no field 'rol' (its fields: "},
+           {"HIL_ACTUATOR_CONTROLS.controls[99]", "at character 32: the index of HIL_ACTUATOR_CONTROLS.controls is 0 to 15"},
+           {"ATTITUDE.roll*(2", "at character 15: '(' without its ')'"},
+           {std::string(2000, '('), "at character 1001: longer than 1000 characters"}}) {
+    auto bad = test::run_hitl({"report", tlog, "--plot", value, "-o", dir + "/bad.html"});
+    EXPECT_EQ(bad.exit_code, 2) << value << ": " << bad.err;
+    EXPECT_NE(bad.err.find(said), std::string::npos) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/bad.html"));
+  }
+
+  // Chromium draws the page without an error; zooming one time plot zooms the --plot plots too.
+  const std::string chromium = test::find_program("chromium");
+  if (chromium.empty()) return;  // the demo's test says why
+  const auto probe = probe_in_chromium(chromium, dir + "/f.html", dir, kFieldPlotProbe);
+  ASSERT_FALSE(probe.contains("failure")) << probe.dump();
+  EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
+  ASSERT_EQ(probe["fields"].size(), 2u) << probe.dump();  // the third lacks its data
+  EXPECT_EQ(probe["fields"][0]["labels"].dump(), R"(["t","ATTITUDE.roll","ATTITUDE.pitch"])");
+  EXPECT_GT(probe["fields"][0]["rows"].get<int>(), 20);
+  EXPECT_EQ(probe["canvases"].get<int>() > 0, true);
+  for (std::size_t i = 0; i < probe["after"].size(); ++i) {
+    EXPECT_NEAR(probe["after"][i][0].get<double>(), probe["zoom"][0].get<double>(), 1e-6) << probe["ids"][i];
+    EXPECT_NEAR(probe["after"][i][1].get<double>(), probe["zoom"][1].get<double>(), 1e-6) << probe["ids"][i];
+  }
+}
+
+TEST(ReportE2E, AParameterSetThroughARecordingSessionShowsInTheParametersTable) {
+  // hitl params set through hitl sim's client port while it records: the board's PARAM_VALUE (the
+  // value read first, then its echo) are in the recording, and the report's last section says so.
+  const std::string dir = test::temp_dir();
+  std::ofstream(dir + "/hover.json") << R"({"waypoints": [{"t": 0, "x": 0, "y": 0, "z": 2.5, "yaw": 0},
+                                                          {"t": 6, "x": 0, "y": 0, "z": 2.5, "yaw": 0}]})";
+  const uint16_t hil = test::free_udp_port(), clients = test::free_udp_port();
+  test::Process board({test::hitl_binary(), "target", "--bind", "127.0.0.1", "--hil-port", std::to_string(hil), "--gcs-port",
+                       std::to_string(test::free_udp_port()), "--vio-port", "0", "--lockstep"});
+  ASSERT_TRUE(board.wait_for_stderr("EMULATED", 10s)) << board.err();
+  test::Process sim({test::hitl_binary(), "sim", "-i", "127.0.0.1", "--hil-port", std::to_string(hil), "--local-port",
+                     std::to_string(test::free_udp_port()), "--no-vio", "--clients", std::to_string(clients), "--lockstep", "--speed",
+                     "3", "-t", dir + "/hover.json", "--record", dir + "/p.tlog"});
+  ASSERT_TRUE(sim.wait_for_stderr("trajectory:", 30s)) << sim.err();
+  auto set = test::run_hitl({"params", "--connect", "udp:127.0.0.1:" + std::to_string(clients), "--local-port",
+                             std::to_string(test::free_udp_port()), "set", "MPC_XY_P", "1.1"},
+                            30s);
+  EXPECT_EQ(set.exit_code, 0) << set.out << set.err;
+  EXPECT_EQ(sim.wait(90s), 0) << sim.err();
+  board.signal(SIGINT);
+  board.wait(20s);
+  auto r = test::run_hitl({"report", dir + "/p.tlog", "-o", dir + "/p.html"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = read_file(dir + "/p.html");
+  EXPECT_NE(page.find("Values: PARAM_VALUE in this log ("), std::string::npos);
+  EXPECT_NE(page.find("Defaults: the spec's HITL set that hitl target boots with"), std::string::npos);
+  EXPECT_NE(page.find("<tr><td>MPC_XY_P</td><td>1.1</td><td>0.95</td></tr>"), std::string::npos)
+      << page.substr(page.find("<h2>Parameters that differ"), 1500);
+}
+
 TEST(ReportE2E, NotATlogIsBadInputNamed) {
   const std::string dir = test::temp_dir();
   std::ofstream(dir + "/notes.txt") << "not a telemetry log\n";

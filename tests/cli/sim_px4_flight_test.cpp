@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "engine/report/flight_log.h"
+#include "engine/report/parameters.h"
 #include "engine/report/px4_estimate.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"
@@ -304,6 +305,23 @@ TEST_F(Px4Flight, HoverReportMergesPx4sOwnULogAgainstTheTruth) {
   // more or less than that, which the report test against hitl target checks to centimetres.
   EXPECT_LT(std::abs(up), 1.0) << "PX4's height in the hover, from home as the truth's";
   EXPECT_LT(std::hypot(north, east), 1.0);
+  // EKF2's innovations and test ratios (PX4's default logging: 2 Hz) on the same clock: GPS and the
+  // barometer fused (no vision under --no-vio), and the parameters PX4 runs with that differ from its
+  // logged defaults (hitl's vehicle parameters at least).
+  std::map<std::string, std::size_t> innovations;
+  for (const auto& i : px4->innovations) innovations[i.name] = i.value.size();
+  EXPECT_GT(innovations["GPS velocity north"], 10u) << px4->innovations_missing;
+  EXPECT_GT(innovations["barometer height"], 10u) << px4->innovations_missing;
+  EXPECT_FALSE(innovations.count("vision velocity north")) << "--no-vio: not fused";
+  EXPECT_FALSE(px4->test_ratios.empty());
+  log->px4 = *px4;
+  const auto parameters = report::non_default_parameters(*log);
+  EXPECT_NE(parameters.defaults_from.find("PX4's ULog"), std::string::npos) << parameters.defaults_from;
+  EXPECT_FALSE(parameters.differ.empty());
+  std::printf("[ figures  ] PX4's ULog: %zu innovations drawn (%zu samples of GPS velocity north), %zu test ratios, %zu of %zu "
+              "parameters differ from its logged defaults\n",
+              px4->innovations.size(), innovations["GPS velocity north"], px4->test_ratios.size(), parameters.differ.size(),
+              parameters.compared);
   std::printf("[ figures  ] PX4's estimate minus truth in the 2.5 m hover (%zu samples, %.1f-%.1f s): north %.3f m, east %.3f m, "
               "up %.3f m; whole flight RMS %.3f m, lag %.0f ms\n",
               n, start_s, end_s, north, east, up, j["ulog"]["offset_m"]["rms"].get<double>(), j["ulog"]["lag_ms"].get<double>());

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 
 #include "base/contract/session_status.h"
@@ -13,6 +14,7 @@
 #include "base/mavlink/text_field.h"
 #include "engine/mavlink/tlog.h"
 #include "engine/report/flight_log.h"
+#include "engine/report/html.h"
 #include "engine/report/plots.h"
 
 namespace hitl::report {
@@ -387,6 +389,48 @@ TEST(FlightLog, EventsBeyondTheLimitAreCountedNotKept) {
   ASSERT_TRUE(log) << log.error().message;
   EXPECT_EQ(log->events.size(), 10u);
   EXPECT_EQ(log->missing.back(), "20 events after the first 10");
+}
+
+TEST(FlightLog, ParamValueIsReadByteWiseLastValueKeptAndTheTableSaysWhatDiffers) {
+  // PARAM_VALUE from the vehicle (hitl params through a session, a ground station): INT32 byte-wise
+  // in the float as PX4 sends it, the last value of each; the simulator's own are not the vehicle's.
+  const std::string path = ::testing::TempDir() + "params.tlog";
+  auto param = [](std::string_view name, float wire, uint8_t type) {
+    msg::ParamValue p;
+    mavlink::set_text(p.param_id, name);
+    p.param_value = wire;
+    p.param_type = type;
+    return p;
+  };
+  auto int32 = [](int32_t v) {
+    float f = 0;
+    std::memcpy(&f, &v, sizeof f);
+    return f;
+  };
+  {
+    LogWriter w(path);
+    w.add(0, 1, 1, heartbeat(false));
+    w.add(1000, 1, 1, param("SYS_HITL", int32(1), 6));
+    w.add(2000, 1, 1, param("CAL_ACC0_ID", int32(1310988), 6));
+    w.add(3000, 1, 1, param("MPC_XY_P", 0.95F, 9));
+    w.add(4000, 1, 1, param("SYS_HITL", int32(0), 6));  // set later in the flight: the last value stands
+    w.add(5000, kSimulatorSystemId, 1, param("SYS_HITL", int32(5), 6));
+    w.close();
+  }
+  auto log = read_flight_log(path);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_EQ(log->parameters, (std::map<std::string, double>{{"CAL_ACC0_ID", 1310988}, {"MPC_XY_P", 0.95F}, {"SYS_HITL", 0}}));
+  // Against the emulated board's defaults (no ULog): SYS_HITL is 1 in the HITL set; MPC_XY_P is not in it.
+  const std::string section = parameters_section(*log);
+  EXPECT_NE(section.find("<tr><td>SYS_HITL</td><td>0</td><td>1</td></tr>"), std::string::npos) << section;
+  EXPECT_EQ(section.find("<td>CAL_ACC0_ID</td>"), std::string::npos) << "at its default";
+  EXPECT_NE(section.find("1 of 2 differ; 1 without a known default, not compared."), std::string::npos) << section;
+  EXPECT_NE(section.find("base/contract/hitl-defaults.params"), std::string::npos);
+  // Set during the log: SYS_HITL 1 -> 0, whatever the defaults say.
+  EXPECT_NE(section.find("<table id=\"parameters-changed\"><tr><th>parameter</th><th>value</th><th>first in this log</th></tr>\n"
+                         "<tr><td>SYS_HITL</td><td>0</td><td>1</td></tr>"),
+            std::string::npos)
+      << section;
 }
 
 }  // namespace

@@ -52,6 +52,14 @@ TEST(ULog, ARealPx4SitlLogGivesItsEstimateInfoAndParameters) {
   EXPECT_EQ(log->info["ver_sw"].size(), 40u) << "a git hash";
   EXPECT_TRUE(log->parameters.count("MPC_XY_CRUISE"));
   EXPECT_GT(log->parameters.size(), 500u);
+  // Its logged defaults ('Q'), only for the 62 parameters whose value differs from one: the system's
+  // (bit 0), the current setup's (bit 1), or both in one message.
+  EXPECT_EQ(log->parameter_defaults.size(), 62u);
+  EXPECT_EQ(log->parameter_defaults["BAT1_N_CELLS"].system, 0.0);
+  EXPECT_FALSE(log->parameter_defaults["BAT1_N_CELLS"].current_setup);
+  EXPECT_EQ(log->parameters["BAT1_N_CELLS"], 4.0);
+  EXPECT_EQ(log->parameter_defaults["CAL_BARO0_PRIO"].system, -1.0);
+  EXPECT_EQ(log->parameter_defaults["CAL_BARO0_PRIO"].current_setup, -1.0);
   ASSERT_EQ(log->series.size(), 2u);
   const auto& pos = log->series[0];
   EXPECT_EQ(pos.missing, "");
