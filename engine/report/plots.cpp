@@ -6,6 +6,7 @@
 #include <optional>
 #include <tuple>
 
+#include "engine/report/allan_plot.h"
 #include "engine/report/spectrum.h"
 
 namespace hitl::report {
@@ -332,6 +333,7 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     }
     drop_indistinct(p, options.indistinct_fraction);
   }
+  for (auto& p : allan_plots(log)) push(std::move(p));  // allan_plot.h: log-log, ~40 points a curve, none dropped
   for (auto& p : plots)
     for (const auto& s : p.series)
       if (s.x.size() < s.samples && s.style != SeriesStyle::Reference) {
