@@ -32,7 +32,8 @@ struct RestStretch {
 std::optional<RestStretch> longest_rest(const FlightLog& log);
 
 /// The two plots ("allan-gyro", "allan-accel"), log_axes set; without a rest stretch, both without
-/// series (their `sources` say what is needed).
+/// series (their `sources` say what is needed; plots_of leaves them out: a flight without a long
+/// rest lacks nothing).
 std::vector<Plot> allan_plots(const FlightLog& log);
 
 }  // namespace hitl::report

@@ -333,7 +333,10 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     }
     drop_indistinct(p, options.indistinct_fraction);
   }
-  for (auto& p : allan_plots(log)) push(std::move(p));  // allan_plot.h: log-log, ~40 points a curve, none dropped
+  // allan_plot.h: log-log, ~40 points a curve, none dropped; a flight without 30 s at rest lacks
+  // nothing a report needs, so no plot in its place.
+  for (auto& p : allan_plots(log))
+    if (!p.series.empty()) push(std::move(p));
   for (auto& p : plots)
     for (const auto& s : p.series)
       if (s.x.size() < s.samples && s.style != SeriesStyle::Reference) {
