@@ -140,6 +140,7 @@ int run_sim(const GlobalOptions& global, SimOptions& opt) {
     return exit_code(faults_read.error());
   }
   cfg.vehicle = vehicle->vehicle;
+  cfg.imu_profile = vehicle->imu_profile;
   cfg.sensor_units = vehicle->units;
   for (const std::size_t unit : opt.units_on) sensors::enable_unit(cfg.sensor_units, unit);
   cfg.world = *world;

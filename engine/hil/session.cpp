@@ -10,6 +10,7 @@
 #include "base/common/clock.h"
 #include "engine/hil/session_impl.h"
 #include "engine/hil/step_check.h"
+#include "engine/telemetry/imu_noise_statement.h"
 
 namespace hitl::hil {
 
@@ -179,6 +180,10 @@ Expected<Session::EndReason> Session::Impl::run_steps(const std::atomic<bool>& s
   s.start_wall_s = monotonic_s();
   s.window_start_wall_s = s.start_wall_s;
   s.pacer->start();
+  // What the IMU is set to, into the recording and to the clients (hitl report marks it on its Allan plot).
+  const model::ImuConfig imu = s.config.noise ? s.config.vehicle.sensors.imu : model::with_noise_disabled(s.config.vehicle).sensors.imu;
+  s.services->announce(Severity::Info, telemetry::imu_noise_statement({s.config.imu_profile, imu.gyro.noise_density, imu.gyro.bias_instability,
+                                                                      imu.accel.noise_density, imu.accel.bias_instability}));
   double next_status_s = s.start_wall_s + 1.0;
   double next_publish_s = s.start_wall_s;
   double next_px4_check_s = s.start_wall_s;

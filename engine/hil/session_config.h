@@ -80,6 +80,7 @@ struct SessionConfig {
   double no_answer_warning_s = 2.0;       ///< say so when nothing came back this long after the first HIL_SENSOR
 
   model::VehicleConfig vehicle;           ///< --vehicle FILE over the compiled-in x500
+  std::string imu_profile;                ///< the vehicle file's sensors.imu.profile, said with the IMU's noise at the start ("" : not said)
   sensors::UnitConfigs sensor_units;      ///< the sensor units (--vehicle FILE's sensors.<name>, --<name>): off by default
   model::WorldConfig world;               ///< --world FILE
   uint64_t seed = 1;                      ///< --seed

@@ -87,6 +87,8 @@ void vehicle_fields(V& v, VehicleConfig& c) {
     s.object("mag", [&](auto& m) {
       m.number("rate_hz", sc.mag.rate_hz, closed(0.1, 10000.0));
       m.object("noise", [&](auto& n) { inertial_noise_fields(n, sc.mag.noise); });
+      m.number("range_gauss", sc.mag.range_gauss, closed(0.0, 100.0));
+      m.number("resolution_gauss", sc.mag.resolution_gauss, closed(0.0, 1.0));
     });
     s.object("baro", [&](auto& b) {
       b.number("rate_hz", sc.baro.rate_hz, closed(0.1, 10000.0));
@@ -105,6 +107,7 @@ void vehicle_fields(V& v, VehicleConfig& c) {
       g.number("velocity_noise_m_s", gc.velocity_noise_m_s, kNonNegative);
       g.number("eph_m", gc.eph_m, kNonNegative);
       g.number("epv_m", gc.epv_m, kNonNegative);
+      g.boolean("accuracy_follows_error", gc.accuracy_follows_error);
       g.integer("satellites", gc.satellites, closed(0, 255));
       g.number("delay_s", gc.delay_s, closed(0.0, 10.0));
     });

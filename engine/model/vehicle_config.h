@@ -97,6 +97,8 @@ struct ImuConfig {
 struct MagConfig {
   double rate_hz = 0.0;
   InertialNoiseConfig noise;  ///< gauss
+  double range_gauss = 0.0;       ///< full scale per axis: readings saturate here (0: no limit)
+  double resolution_gauss = 0.0;  ///< one LSB: readings are rounded to it (0: not quantised)
 };
 
 struct BaroConfig {
@@ -116,6 +118,10 @@ struct GpsConfig {
   double velocity_noise_m_s = 0.0;        ///< white noise sigma per velocity axis
   double eph_m = 0.0;                     ///< reported horizontal accuracy
   double epv_m = 0.0;                     ///< reported vertical accuracy
+  /// eph/epv follow the modelled error (the receiver's own accuracy estimate moving with it) instead
+  /// of the constants above: eph = k sqrt(e_E^2 + e_N^2 + 2 horizontal_noise^2), epv = k sqrt(e_U^2 +
+  /// vertical_noise^2), k the gps-noise fault's scale. Off: the constants (the generic receiver).
+  bool accuracy_follows_error = false;
   int satellites = 0;
   double delay_s = 0.0;                   ///< samples reported this late (0 = none)
 };

@@ -138,6 +138,7 @@ VehicleConfig with_noise_disabled(VehicleConfig c) {
   }
   c.sensors.imu.accel_resolution_m_s2 = c.sensors.imu.gyro_resolution_rad_s = 0.0;  // exact values
   c.sensors.imu.vibration = VibrationConfig{};
+  c.sensors.mag.resolution_gauss = 0.0;  // exact values
   c.sensors.baro.noise_pa = 0.0;
   c.sensors.baro.drift_pa_sqrt_s = 0.0;
   c.sensors.baro.temperature_noise_c = 0.0;

@@ -77,6 +77,7 @@ std::string gnuplot_script(const std::vector<Plot>& plots, const TimeMarks& mark
     s << "set title " << quoted(plot.title) << "\nset xlabel " << quoted(plot.x_label) << "\nset ylabel " << quoted(plot.y_label) << "\n";
     s << "set grid\nset key outside right top vertical\nset border 3\nset tics nomirror\n";
     if (plot.equal_axes) s << "set size ratio -1\n";
+    if (plot.log_axes) s << "set logscale xy\nset format y '%.0e'\n";
     if (plot.time_axis && plot.x_max > plot.x_min) s << "set xrange [" << plot.x_min << ":" << plot.x_max << "]\n";
     if (plot.time_axis) {
       static const char* const kModeTints[] = {"#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#bcbd22", "#17becf", "#e377c2", "#7f7f7f"};

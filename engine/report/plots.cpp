@@ -6,6 +6,7 @@
 #include <optional>
 #include <tuple>
 
+#include "engine/report/allan_plot.h"
 #include "engine/report/spectrum.h"
 
 namespace hitl::report {
@@ -392,6 +393,10 @@ std::vector<Plot> plots_of(const FlightLog& log, const PlotOptions& options) {
     }
     drop_indistinct(p, options.indistinct_fraction);
   }
+  // allan_plot.h: log-log, ~40 points a curve, none dropped; a flight without 30 s at rest lacks
+  // nothing a report needs, so no plot in its place.
+  for (auto& p : allan_plots(log))
+    if (!p.series.empty()) push(std::move(p));
   for (auto& p : plots)
     for (const auto& s : p.series)
       if (s.x.size() < s.samples && s.style != SeriesStyle::Reference) {

@@ -48,6 +48,7 @@ struct Plot {
   double x_min = 0, x_max = 0;  ///< the time axis' range
   std::string sources;       ///< the messages its series come from, in words ("ATTITUDE (estimate), ...")
   std::string lacks;         ///< no series (kept with PlotOptions::keep_lacking): what the log lacks for it
+  bool log_axes = false;     ///< both axes logarithmic (the Allan deviation; every value > 0)
 };
 
 struct PlotOptions {

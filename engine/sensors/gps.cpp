@@ -41,8 +41,14 @@ GpsSample Gps::measure(const model::VehicleState& state, double t_s) {
   for (int i = 0; i < 3; ++i) s.v_NED_m_s[i] += noise_scale_ * rng_.normal(config_.velocity_noise_m_s);
   s.ground_speed_m_s = s.v_NED_m_s.head<2>().norm();
   s.course_over_ground_deg = course_over_ground_deg(s.v_NED_m_s);
-  s.eph_m = config_.eph_m;
-  s.epv_m = config_.epv_m;
+  if (config_.accuracy_follows_error) {  // the receiver's estimate moves with its error
+    const double wh = config_.horizontal_noise_m, wv = config_.vertical_noise_m;
+    s.eph_m = noise_scale_ * std::sqrt(error_ENU_m_.head<2>().squaredNorm() + 2.0 * wh * wh);
+    s.epv_m = noise_scale_ * std::sqrt(error_ENU_m_.z() * error_ENU_m_.z() + wv * wv);
+  } else {
+    s.eph_m = config_.eph_m;
+    s.epv_m = config_.epv_m;
+  }
   s.fix_type = 3;
   s.satellites = static_cast<std::uint8_t>(config_.satellites);
   return s;

@@ -3,6 +3,8 @@
 //   position = truth + e + white,  e: Gauss-Markov with stationary sigma (horizontal/vertical)
 //              and correlation time (a slowly wandering offset, like a real receiver's)
 //   velocity = truth + velocity_noise N(0,1)
+//   eph, epv  the constants, or with accuracy_follows_error the RMS of the error now (wander and
+//             white noise) as a receiver's own estimate moves with it
 // With delay_s > 0 each sample reports the fix taken delay_s earlier.
 #pragma once
 

@@ -1,11 +1,24 @@
 #include "engine/sensors/magnetometer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "engine/frames/frames.h"
 
 namespace hitl::sensors {
+namespace {
+
+/// Rounded to whole LSBs and held within the full scale, as the part's registers give it (0: none).
+Eigen::Vector3d as_read(Eigen::Vector3d v, const model::MagConfig& config) {
+  for (int i = 0; i < 3; ++i) {
+    if (config.resolution_gauss > 0.0) v[i] = std::round(v[i] / config.resolution_gauss) * config.resolution_gauss;
+    if (config.range_gauss > 0.0) v[i] = std::clamp(v[i], -config.range_gauss, config.range_gauss);
+  }
+  return v;
+}
+
+}  // namespace
 
 Eigen::Vector3d earth_field_NED_gauss(const model::MagneticFieldConfig& field) {
   const double deg = std::numbers::pi / 180.0;
@@ -28,7 +41,7 @@ MagSample Magnetometer::sample(const model::VehicleState& state, double t_s) {
   const Eigen::Quaterniond q_FRD_to_NED = frames::q_FRD_to_NED_from(state.q_FLU_to_ENU);
   MagSample s;
   s.time_s = t_s;
-  s.mag_FRD_gauss = noise_.apply(q_FRD_to_NED.conjugate() * field_NED_gauss_, dt_s);
+  s.mag_FRD_gauss = as_read(noise_.apply(q_FRD_to_NED.conjugate() * field_NED_gauss_, dt_s), config_);
   return s;
 }
 

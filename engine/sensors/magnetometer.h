@@ -1,5 +1,6 @@
 // Magnetometer: Earth's field at home (declination D, inclination I, strength F),
 //   B_NED = F (cos I cos D, cos I sin D, sin I),   mag_FRD = R_FRD_to_NED^T B_NED + noise  [gauss]
+// then rounded to the part's LSB and held within its full scale (resolution_gauss, range_gauss; 0: none).
 #pragma once
 
 #include <cstdint>

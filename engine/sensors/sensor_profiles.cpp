@@ -11,43 +11,53 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr std::string_view kImuPrefix = "imu-";
+/// "IMU", "barometer": a kind in an error message.
+std::string kind_words(std::string_view kind) {
+  if (kind == "imu") return "IMU";
+  if (kind == "baro") return "barometer";
+  if (kind == "mag") return "magnetometer";
+  if (kind == "gps") return "GPS";
+  return std::string(kind);
+}
 
-const EmbeddedProfile* find_imu_profile(std::string_view name) {
+const EmbeddedProfile* find_profile(std::string_view kind, std::string_view name) {
+  const std::string prefix = std::string(kind) + "-";
   for (const EmbeddedProfile& p : embedded_profiles()) {
     const std::string_view stem(p.file_stem);
-    if (stem.starts_with(kImuPrefix) && stem.substr(kImuPrefix.size()) == name) return &p;
+    if (stem.starts_with(prefix) && stem.substr(prefix.size()) == name) return &p;
   }
   return nullptr;
 }
 
-Expected<json> profile_json(std::string_view name) {
-  const EmbeddedProfile* p = find_imu_profile(name);
-  if (p == nullptr) return Error::input("unknown IMU profile \"" + std::string(name) + "\" (known: " + imu_profile_list() + ")");
+Expected<json> profile_json(std::string_view kind, std::string_view name) {
+  const EmbeddedProfile* p = find_profile(kind, name);
+  if (p == nullptr)
+    return Error::input("unknown " + kind_words(kind) + " profile \"" + std::string(name) + "\" (known: " + profile_list(kind) + ")");
   // The files are the project's own: a parse error is a build defect, which the profile tests catch.
   return json::parse(p->text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
 }
 
 }  // namespace
 
-std::vector<std::string> imu_profile_names() {
+std::vector<std::string> profile_names(std::string_view kind) {
+  const std::string prefix = std::string(kind) + "-";
   std::vector<std::string> out;
   for (const EmbeddedProfile& p : embedded_profiles()) {
     const std::string_view stem(p.file_stem);
-    if (stem.starts_with(kImuPrefix)) out.emplace_back(stem.substr(kImuPrefix.size()));
+    if (stem.starts_with(prefix)) out.emplace_back(stem.substr(prefix.size()));
   }
   std::sort(out.begin(), out.end());
   return out;
 }
 
-std::string imu_profile_list() {
+std::string profile_list(std::string_view kind) {
   std::string out;
-  for (const std::string& n : imu_profile_names()) out += (out.empty() ? "" : ", ") + n;
+  for (const std::string& n : profile_names(kind)) out += (out.empty() ? "" : ", ") + n;
   return out;
 }
 
-Expected<ProfileInfo> imu_profile_info(std::string_view name) {
-  auto root = profile_json(name);
+Expected<ProfileInfo> profile_info(std::string_view kind, std::string_view name) {
+  auto root = profile_json(kind, name);
   if (!root) return root.error();
   ProfileInfo info;
   // Every profile has these fields (the profile tests read each file).
@@ -61,12 +71,19 @@ Expected<ProfileInfo> imu_profile_info(std::string_view name) {
   return info;
 }
 
-Expected<model::VehicleConfig> apply_imu_profile(std::string_view name, const model::VehicleConfig& base) {
-  auto root = profile_json(name);
+Expected<model::VehicleConfig> apply_profile(std::string_view kind, std::string_view name, const model::VehicleConfig& base) {
+  auto root = profile_json(kind, name);
   if (!root) return root.error();
   json wrapped;
-  wrapped["sensors"]["imu"] = root->at("imu");
-  return model::parse_vehicle_config(wrapped.dump(), "IMU profile " + std::string(name), base);
+  wrapped["sensors"][std::string(kind)] = root->at(std::string(kind));
+  return model::parse_vehicle_config(wrapped.dump(), kind_words(kind) + " profile " + std::string(name), base);
+}
+
+std::vector<std::string> imu_profile_names() { return profile_names("imu"); }
+std::string imu_profile_list() { return profile_list("imu"); }
+Expected<ProfileInfo> imu_profile_info(std::string_view name) { return profile_info("imu", name); }
+Expected<model::VehicleConfig> apply_imu_profile(std::string_view name, const model::VehicleConfig& base) {
+  return apply_profile("imu", name, base);
 }
 
 }  // namespace hitl::sensors

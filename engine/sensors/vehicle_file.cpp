@@ -14,28 +14,40 @@ using json = nlohmann::json;
 
 std::string unit_path(std::string_view name) { return "sensors." + std::string(name); }
 
-/// `sensors.imu.profile`: the profile applied to `base` (what the vehicle's reader reads over) and
-/// the key taken out (the vehicle's reader does not know it).
-void read_imu_profile(json& root, VehicleFile& out, model::VehicleConfig& base, std::vector<std::string>& errors) {
+/// `sensors.<kind>.profile`: the profile applied to `base` (what the vehicle's reader reads over)
+/// and the key taken out (the vehicle's reader does not know it).
+void read_profile(std::string_view kind, json& root, VehicleFile& out, model::VehicleConfig& base,
+                  std::vector<std::string>& errors) {
   if (!root.is_object()) return;
   auto sensors = root.find("sensors");
   if (sensors == root.end() || !sensors->is_object()) return;
-  auto imu = sensors->find("imu");
-  if (imu == sensors->end() || !imu->is_object()) return;
-  auto profile = imu->find("profile");
-  if (profile == imu->end()) return;
+  auto section = sensors->find(std::string(kind));
+  if (section == sensors->end() || !section->is_object()) return;
+  auto profile = section->find("profile");
+  if (profile == section->end()) return;
+  const std::string key = "sensors." + std::string(kind) + ".profile";
   if (!profile->is_string()) {
-    errors.push_back("sensors.imu.profile: must be a string, one of: " + imu_profile_list() + " (got " + profile->dump() + ")");
-  } else if (auto applied = apply_imu_profile(profile->get<std::string>(), base); !applied) {
-    errors.push_back("sensors.imu.profile: " + applied.error().message);
+    errors.push_back(key + ": must be a string, one of: " + profile_list(kind) + " (got " + profile->dump() + ")");
+  } else if (auto applied = apply_profile(kind, profile->get<std::string>(), base); !applied) {
+    errors.push_back(key + ": " + applied.error().message);
   } else {
     base = std::move(*applied);
-    out.imu_profile = profile->get<std::string>();
+    profile_of(out, kind) = profile->get<std::string>();
   }
-  imu->erase(profile);
+  section->erase(profile);
 }
 
 }  // namespace
+
+std::string& profile_of(VehicleFile& file, std::string_view kind) {
+  if (kind == "baro") return file.baro_profile;
+  if (kind == "mag") return file.mag_profile;
+  if (kind == "gps") return file.gps_profile;
+  return file.imu_profile;
+}
+const std::string& profile_of(const VehicleFile& file, std::string_view kind) {
+  return profile_of(const_cast<VehicleFile&>(file), kind);  // the same field, only read
+}
 
 VehicleFile default_vehicle_file() {
   VehicleFile file;
@@ -57,7 +69,7 @@ Expected<VehicleFile> parse_vehicle_file(std::string_view json_text, std::string
   VehicleFile out = default_vehicle_file();
   std::vector<std::string> errors;
   model::VehicleConfig base = out.vehicle;
-  read_imu_profile(root, out, base, errors);
+  for (std::string_view kind : kProfileKinds) read_profile(kind, root, out, base, errors);
   if (root.is_object() && root.contains("sensors") && root.at("sensors").is_object()) {
     json& sensors = root.at("sensors");
     for_each_unit([&](auto i) {
@@ -96,7 +108,8 @@ Expected<VehicleFile> load_vehicle_file(const std::filesystem::path& file) {
 
 std::string to_json_text(const VehicleFile& file) {
   json root = json::parse(model::to_json_text(file.vehicle));
-  root["sensors"]["imu"]["profile"] = file.imu_profile;  // every IMU key follows, so it reads back the same
+  // Every key of each sensor follows its profile, so the file reads back the same.
+  for (std::string_view kind : kProfileKinds) root["sensors"][std::string(kind)]["profile"] = profile_of(file, kind);
   for_each_unit([&](auto i) {
     using U = UnitAt<decltype(i)::value>;
     json section;

@@ -2,12 +2,15 @@
 // `hitl target --lockstep`, `hitl sim --lockstep --speed 0`, recorded; `hitl inspect --tlog --allan
 // --json` reads back each profile's noise: the white-noise slope within 20 % of the profile's noise
 // density and the curve's floor within 50 % of what the profile's noise gives (its bias
-// instability, or where white noise meets its random walk), for gyro and accel on every axis.
+// instability, or where white noise meets its random walk), for gyro and accel on every axis; and
+// `hitl report` of the same recording plots the Allan deviation with the profile's figures marked.
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -42,6 +45,41 @@ double modelled_deviation(const model::InertialNoiseConfig& n, double lsb, doubl
   return std::sqrt(white2 / tau_s + n.random_walk * n.random_walk * tau_s / 3.0 + floor * floor);
 }
 
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string three_figures(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
+
+/// `hitl report` of the rest recording: an Allan plot per sensor (issue 37, item 3), the white noise
+/// the simulator said its IMU has marked with the profile's name, and its floor where B > 0.
+void expect_report_marks(const std::string& tlog, const std::string& profile, const model::ImuConfig& imu) {
+  const std::string html = tlog + ".html";
+  const auto r = test::run_hitl({"report", tlog, "-o", html});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = read_text(html);
+  std::filesystem::remove(html);
+  for (const char* sensor : {"gyro", "accel"}) {
+    const std::string id = std::string("<figure id=\"plot-allan-") + sensor + "\"";
+    const auto at = page.find(id);
+    ASSERT_NE(at, std::string::npos) << sensor;
+    const std::string figure = page.substr(at, page.find("</figure>", at) - at);
+    const model::InertialNoiseConfig& n = std::string(sensor) == "gyro" ? imu.gyro : imu.accel;
+    EXPECT_NE(figure.find("profile " + profile + ": N/sqrt(tau), N = " + three_figures(n.noise_density)), std::string::npos)
+        << sensor << ": " << figure.substr(0, 2000);
+    EXPECT_EQ(figure.find("profile " + profile + ": 0.664 B") != std::string::npos, n.bias_instability > 0) << sensor;
+    EXPECT_NE(figure.find("fitted N/sqrt(tau)"), std::string::npos) << sensor;
+    EXPECT_NE(figure.find("600 s at rest"), std::string::npos) << sensor;
+  }
+}
+
 /// Records `vehicle_file` at rest and checks what --allan reads back against the file's IMU noise.
 void expect_noise_of(const std::string& vehicle_file) {
   auto file = sensors::load_vehicle_file(vehicle_file);
@@ -51,6 +89,7 @@ void expect_noise_of(const std::string& vehicle_file) {
   const std::string tlog = record_rest(test::temp_dir(), vehicle_file);
   ASSERT_FALSE(tlog.empty());
   const auto r = test::run_hitl({"--json", "inspect", "--tlog", tlog, "--allan"});
+  expect_report_marks(tlog, profile, file->vehicle.sensors.imu);
   std::filesystem::remove(tlog);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = test::last_json_line(r.out);

@@ -10,6 +10,7 @@
 #include "engine/model/x500_defaults.h"
 #include "engine/sensors/imu.h"
 #include "engine/sensors/inertial_noise.h"
+#include "engine/sensors/magnetometer.h"
 #include "engine/sensors/sensor_profiles.h"
 #include "engine/sensors/vehicle_file.h"
 #include "engine/telemetry/allan_deviation.h"
@@ -30,6 +31,84 @@ TEST(SensorProfiles, EveryProfileParsesAndNamesItsPartAndSources) {
     EXPECT_FALSE(info->sources.empty());
     EXPECT_TRUE(apply_imu_profile(name, model::x500_vehicle_config()).ok()) << name;
   }
+}
+
+TEST(SensorProfiles, EveryKindHasGenericAndItsBoardPart) {
+  EXPECT_EQ(profile_names("baro"), (std::vector<std::string>{"generic", "icp-10100"}));
+  EXPECT_EQ(profile_names("mag"), (std::vector<std::string>{"generic", "ist8310"}));
+  EXPECT_EQ(profile_names("gps"), (std::vector<std::string>{"generic", "u-blox-m10"}));
+  for (std::string_view kind : kProfileKinds) {
+    for (const std::string& name : profile_names(kind)) {
+      auto info = profile_info(kind, name);
+      ASSERT_TRUE(info.ok()) << kind << " " << name;
+      EXPECT_EQ(info->name, name);
+      EXPECT_EQ(info->kind, kind);
+      EXPECT_FALSE(info->part.empty());
+      EXPECT_FALSE(info->sources.empty());
+      auto applied = apply_profile(kind, name, model::x500_vehicle_config());
+      EXPECT_TRUE(applied.ok()) << kind << " " << name << ": " << (applied ? "" : applied.error().message);
+      // generic is the compiled-in x500's values, byte for byte.
+      if (name == "generic") {
+        EXPECT_EQ(model::to_json_text(*applied), model::to_json_text(model::x500_vehicle_config())) << kind;
+      }
+    }
+  }
+}
+
+TEST(SensorProfiles, Icp10100CarriesTheDatasheetNoise) {
+  auto file = parse_vehicle_file(R"({"sensors": {"baro": {"profile": "icp-10100"}}})", "vehicle.json");
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  EXPECT_EQ(file->baro_profile, "icp-10100");
+  EXPECT_EQ(file->vehicle.sensors.baro.noise_pa, 0.4);  // DS-000186: 0.4 Pa RMS in ULN mode, PX4's
+  EXPECT_EQ(file->vehicle.sensors.baro.drift_pa_sqrt_s, 0.0);  // not published: generic
+  EXPECT_EQ(file->vehicle.sensors.baro.rate_hz, 10.0);  // the HIL rate stays the vehicle's
+  EXPECT_EQ(file->imu_profile, "generic");
+}
+
+TEST(SensorProfiles, Ist8310CarriesPx4sResolutionAndTheGenericNoise) {
+  auto file = parse_vehicle_file(R"({"sensors": {"mag": {"profile": "ist8310"}}})", "vehicle.json");
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  const model::MagConfig& mag = file->vehicle.sensors.mag;
+  EXPECT_DOUBLE_EQ(mag.resolution_gauss, 1.0 / 1320.0);  // 16-bit output, 1320 LSB/gauss
+  EXPECT_EQ(mag.range_gauss, 0.0);
+  EXPECT_EQ(mag.noise.noise_density, model::x500_vehicle_config().sensors.mag.noise.noise_density);
+  Magnetometer m(mag, model::default_world_config().magnetic_field, 4);
+  model::VehicleState s;
+  for (int k = 1; k <= 50; ++k) {
+    const Eigen::Vector3d b = m.sample(s, 0.02 * k).mag_FRD_gauss;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(b[i] * 1320.0, std::round(b[i] * 1320.0), 1e-9);
+  }
+}
+
+TEST(SensorProfiles, UbloxM10CarriesItsCepAndVelocityAccuracy) {
+  auto file = parse_vehicle_file(R"({"sensors": {"gps": {"profile": "u-blox-m10"}}})", "vehicle.json");
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  const model::GpsConfig& gps = file->vehicle.sensors.gps;
+  EXPECT_NEAR(gps.horizontal_error_sigma_m * 1.1774, 1.5, 0.001);  // 1.5 m CEP
+  EXPECT_NEAR(gps.vertical_error_sigma_m / gps.horizontal_error_sigma_m, 15.0 / 9.0, 0.001);  // SPS PS: 15 m / 9 m
+  EXPECT_EQ(gps.error_correlation_time_s, 60.0);
+  EXPECT_EQ(gps.velocity_noise_m_s, 0.05);
+  EXPECT_TRUE(gps.accuracy_follows_error);
+  EXPECT_EQ(gps.rate_hz, 30.0);
+}
+
+TEST(SensorProfiles, AllFourReadBackAsWrittenAndAreRefusedByName) {
+  auto file = parse_vehicle_file(R"({"sensors": {"imu": {"profile": "icm-42688-p"}, "baro": {"profile": "icp-10100"},
+                                     "mag": {"profile": "ist8310"}, "gps": {"profile": "u-blox-m10", "satellites": 14}}})",
+                                 "vehicle.json");
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  EXPECT_EQ(file->vehicle.sensors.gps.satellites, 14);  // the file's own key over the profile
+  auto again = parse_vehicle_file(to_json_text(*file), "again.json");
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  EXPECT_EQ(to_json_text(*again), to_json_text(*file));
+  EXPECT_EQ(again->gps_profile, "u-blox-m10");
+  EXPECT_EQ(again->mag_profile, "ist8310");
+  auto unknown = parse_vehicle_file(R"({"sensors": {"baro": {"profile": "bmp388"}}})", "v.json");
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_EQ(unknown.error().message, "v.json: sensors.baro.profile: unknown barometer profile \"bmp388\" (known: generic, icp-10100)");
+  auto number = parse_vehicle_file(R"({"sensors": {"gps": {"profile": 9}}})", "v.json");
+  ASSERT_FALSE(number.ok());
+  EXPECT_EQ(number.error().message, "v.json: sensors.gps.profile: must be a string, one of: generic, u-blox-m10 (got 9)");
 }
 
 TEST(SensorProfiles, GenericIsTheDefaultAndChangesNothing) {
