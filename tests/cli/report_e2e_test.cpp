@@ -749,7 +749,7 @@ TEST(ReportE2E, PlotOfAnyFieldJoinsTheLinkedZoomOnBothPagesAndBadOnesAreNamed) {
   // Chromium draws the page without an error; zooming one time plot zooms the --plot plots too.
   const std::string chromium = test::find_program("chromium");
   if (chromium.empty()) return;  // the demo's test says why
-  const auto probe = probe_in_chromium(chromium, dir + "/f.html", dir, kFieldPlotProbe);
+  const auto probe = test::probe_in_chromium(chromium, dir + "/f.html", dir, kFieldPlotProbe);
   ASSERT_FALSE(probe.contains("failure")) << probe.dump();
   EXPECT_EQ(probe["errors"].size(), 0u) << probe["errors"].dump();
   ASSERT_EQ(probe["fields"].size(), 2u) << probe.dump();  // the third lacks its data
