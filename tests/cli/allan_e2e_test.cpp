@@ -45,12 +45,7 @@ double modelled_deviation(const model::InertialNoiseConfig& n, double lsb, doubl
   return std::sqrt(white2 / tau_s + n.random_walk * n.random_walk * tau_s / 3.0 + floor * floor);
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_text;
 
 std::string three_figures(double v) {
   char text[32];

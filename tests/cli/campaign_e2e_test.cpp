@@ -16,18 +16,14 @@
 
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"
+#include "tests/support/tools.h"
 
 namespace hitl {
 namespace {
 
 using nlohmann::json;
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_text;
 
 json read_json(const std::string& path) { return json::parse(read_text(path)); }
 

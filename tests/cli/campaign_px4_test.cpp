@@ -24,6 +24,8 @@
 
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"
+#include "tests/support/px4_dir.h"
+#include "tests/support/tools.h"
 
 namespace hitl::test {
 namespace {
@@ -31,12 +33,6 @@ namespace {
 using namespace std::chrono_literals;
 using nlohmann::json;
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// How many processes have `text` in their command line (PX4's has its working folder: -w DIR).
 int processes_naming(const std::string& text) {
@@ -65,11 +61,8 @@ std::size_t ulogs_in(const std::string& dir) {
 class Px4Campaign : public ::testing::Test {
  protected:
   void SetUp() override {
-    const char* dir = std::getenv("HITL_PX4_DIR");
-    if (dir == nullptr || *dir == '\0')
-      GTEST_SKIP() << "HITL_PX4_DIR is not set: these tests fly real PX4 SITL (build it with scripts/px4-sitl.sh TREE, "
-                      "then HITL_PX4_DIR=TREE ctest -L px4)";
-    px4_dir_ = dir;
+    px4_dir_ = px4_dir();
+    if (px4_dir_.empty()) GTEST_SKIP() << kNoPx4Reason;
     dir_ = temp_dir();
     ::setenv("XDG_DATA_HOME", dir_.c_str(), 1);  // never the user's history
   }

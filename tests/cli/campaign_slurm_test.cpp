@@ -22,6 +22,7 @@
 
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"
+#include "tests/support/tools.h"
 
 namespace hitl {
 namespace {
@@ -30,12 +31,7 @@ using namespace std::chrono_literals;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_text;
 
 std::string program(const char* name) {
   for (const char* dir : {"/usr/sbin/", "/usr/bin/", "/sbin/", "/bin/"})

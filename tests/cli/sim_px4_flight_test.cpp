@@ -21,6 +21,7 @@
 #include "engine/report/px4_estimate.h"
 #include "tests/support/json_lines.h"
 #include "tests/support/process.h"
+#include "tests/support/px4_dir.h"
 
 namespace hitl::test {
 namespace {
@@ -30,11 +31,8 @@ using namespace std::chrono_literals;
 class Px4Flight : public ::testing::Test {
  protected:
   void SetUp() override {
-    const char* dir = std::getenv("HITL_PX4_DIR");
-    if (dir == nullptr || *dir == '\0')
-      GTEST_SKIP() << "HITL_PX4_DIR is not set: these tests fly real PX4 SITL (build it with scripts/px4-sitl.sh TREE, "
-                      "then HITL_PX4_DIR=TREE ctest -L px4)";
-    px4_dir_ = dir;
+    px4_dir_ = px4_dir();
+    if (px4_dir_.empty()) GTEST_SKIP() << kNoPx4Reason;
   }
 
   /// `hitl --json sim --px4 DIR -t square.json` with `more`; the summary checked for a clean flight.
