@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -229,16 +230,21 @@ class Reader {
     if (basic == BasicType::Char) {
       text = text_of(value, limits_.max_text_bytes);
     } else if (basic && type.find('[') == std::string_view::npos && value.size() >= basic_size(*basic)) {
+      // %.9g: a float's or a double's digits in at most 16 characters (std::to_string wrote 1e300
+      // as 300 digits); an integer type's value whole (at most 20 digits).
       const double v = decode_basic(*basic, reinterpret_cast<const uint8_t*>(value.data()));
-      text = std::to_string(v);
-      if (*basic != BasicType::Float && *basic != BasicType::Double) text = text.substr(0, text.find('.'));
+      char digits[32];
+      const bool floating = *basic == BasicType::Float || *basic == BasicType::Double;
+      std::snprintf(digits, sizeof digits, floating ? "%.9g" : "%.0f", v);
+      text = digits;
     } else {
       text = "(" + std::to_string(value.size()) + " bytes)";
     }
     const std::string n = text_of(name, 64);
     auto it = log_.info.find(n);
     if (it != log_.info.end()) {
-      if (skip == 1 && it->second.size() < limits_.max_text_bytes) it->second += text;  // 'M' continued
+      if (skip == 1 && it->second.size() < limits_.max_text_bytes)  // 'M' continued, within the limit
+        it->second = text_of(it->second + text, limits_.max_text_bytes);
       return;
     }
     if (log_.info.size() >= limits_.max_info) return void(++info_dropped_);

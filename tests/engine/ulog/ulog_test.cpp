@@ -185,6 +185,23 @@ TEST(ULog, HostileFormatsAreUnusableNotFatal) {
   EXPECT_GE(log->bad_messages, 6u);
 }
 
+// Found by the fuzzer (fuzz.ulog): a double information value of 1e300 was written by
+// std::to_string as 300 digits, past the text limit every other value keeps.
+TEST(ULog, NumbersInTheInformationAreShortWhateverTheirSize) {
+  ULogWriter w;
+  w.flag_bits();
+  w.info("double big", ULogWriter::raw(1e300));
+  w.info("float small", ULogWriter::raw(-1.5e-30F));
+  w.info("uint64_t id", ULogWriter::raw(uint64_t(18446744073709551615ULL)));
+  w.info("int32_t n", ULogWriter::raw(int32_t(-42)));
+  const auto log = parse(w);
+  ASSERT_TRUE(log) << log.error().message;
+  EXPECT_EQ(log->info.at("big"), "1e+300");
+  EXPECT_EQ(log->info.at("small"), "-1.5e-30");
+  EXPECT_EQ(log->info.at("id"), "18446744073709551616");  // as a double holds it
+  EXPECT_EQ(log->info.at("n"), "-42");
+}
+
 TEST(ULog, WhatGrowsWithTheInputIsBoundedAndSaid) {
   ULogWriter w = pos_log(50);
   for (int k = 0; k < 30; ++k) w.logged('6', 1, std::string(5000, 'x'));
