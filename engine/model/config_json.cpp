@@ -83,6 +83,12 @@ void vehicle_fields(V& v, VehicleConfig& c) {
         vib.number("gyro_imbalance_rad_s_per_rad2_s2", vc.gyro_imbalance_rad_s_per_rad2_s2, closed(0.0, 1e-3));
         vib.integer("blades", vc.blades, closed(1, 8));
       });
+      i.object("filter", [&](auto& f) {
+        ImuFilterConfig& fc = sc.imu.filter;
+        f.number("output_data_rate_hz", fc.output_data_rate_hz, closed(0.0, 100000.0));
+        f.number("anti_alias_hz", fc.anti_alias_hz, closed(0.0, 50000.0));
+        f.number("ui_filter_hz", fc.ui_filter_hz, closed(0.0, 50000.0));
+      });
     });
     s.object("mag", [&](auto& m) {
       m.number("rate_hz", sc.mag.rate_hz, closed(0.1, 10000.0));

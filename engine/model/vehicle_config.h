@@ -82,6 +82,17 @@ struct VibrationConfig {
   int blades = 2;
 };
 
+/// The part's own filtering before its output (off by default: the output is the mean of the signal over
+/// each sample interval, as if sampled continuously): a second-order anti-alias low-pass, a first-order
+/// low-pass after it (the user-interface filter of InvenSense parts), sampled at the part's output data
+/// rate and averaged over each HIL interval, as PX4 integrates a part's FIFO. Applied to the airframe's
+/// vibration lines (the rigid-body motion lies far below these bandwidths).
+struct ImuFilterConfig {
+  double output_data_rate_hz = 0.0;  ///< the part's sampling (0: a continuous mean)
+  double anti_alias_hz = 0.0;        ///< 3-dB frequency of the second-order anti-alias filter (0: none)
+  double ui_filter_hz = 0.0;         ///< 3-dB frequency of the first-order filter after it (0: none)
+};
+
 struct ImuConfig {
   double rate_hz = 0.0;
   Eigen::Vector3d position_FLU_m = Eigen::Vector3d::Zero();  ///< IMU mount from base origin (axes = body)
@@ -91,7 +102,8 @@ struct ImuConfig {
   double gyro_resolution_rad_s = 0.0;  ///< one LSB (0: not quantised)
   InertialNoiseConfig gyro;   ///< rad/s
   InertialNoiseConfig accel;  ///< m/s^2
-  VibrationConfig vibration;  ///< the airframe's, from the rotors (off by default)
+  VibrationConfig vibration;  ///< the airframe's, from the rotors (the x500's: x500_defaults.cpp)
+  ImuFilterConfig filter;     ///< the part's filter and sampling (the generic IMU: none)
 };
 
 struct MagConfig {

@@ -31,7 +31,7 @@ Imu::Imu(const model::ImuConfig& config, const model::WorldConfig& world, std::u
       world_(world),
       accel_noise_(config.accel, config.rate_hz, seed, "imu.accel"),
       gyro_noise_(config.gyro, config.rate_hz, seed, "imu.gyro"),
-      vibration_(config.vibration, seed) {}
+      vibration_(config.vibration, seed, config.filter) {}
 
 void Imu::reset() {
   accel_noise_.reset();
