@@ -24,6 +24,7 @@
 #include "engine/vehicle/trajectory.h"
 #include "engine/model/config_json.h"
 #include "engine/model/x500_defaults.h"
+#include "engine/sensors/data_path_timing.h"
 #include "engine/sensors/vehicle_file.h"
 #include "tui/terminal.h"
 
@@ -344,7 +345,7 @@ void add_sim_command(CLI::App& app, GlobalOptions& options, RunState& state) {
                   "Delay the sensors as the board's data path does before PX4 reads them: voxl2 (the HIL split's "
                   "4 ms IMU and 10 ms mag/baro publishing, dsp_hitl's 4 ms poll: 0-8 ms IMU, 0-14 ms mag/baro; "
                   "docs/sim.md), or none")
-      ->check(CLI::IsMember({"none", "voxl2"}))
+      ->check(CLI::IsMember(std::vector<std::string>(sensors::kBoardTimingModels.begin(), sensors::kBoardTimingModels.end())))
       ->capture_default_str()
       ->group(model);
   sub->add_flag("--no-noise", [opt](int64_t) { opt->session.noise = false; },

@@ -26,7 +26,7 @@ Expected<std::unique_ptr<Session>> Session::create(const SessionConfig& config) 
                     config.noise ? config.sensor_units : sensors::without_noise(config.sensor_units));
   if (config.board_timing != "none") {
     const auto timing = sensors::data_path_timing_model(config.board_timing);
-    if (!timing) return Error::usage("--board-timing: unknown model '" + config.board_timing + "' (none, voxl2)");
+    if (!timing) return Error::usage("--board-timing: unknown model '" + config.board_timing + "' (" + sensors::board_timing_model_list() + ")");
     s.sensors->set_data_path_timing(*timing, config.seed);
   }
   for (const auto& f : config.faults) {  // a sensor unit's fault acts on its unit: refused while it is off

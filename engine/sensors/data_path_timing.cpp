@@ -84,6 +84,12 @@ void DataPathTiming::apply(SensorFrame& frame, double now_s) {
   frame.baro = take_due(baro_queue_, now_s);
 }
 
+std::string board_timing_model_list() {
+  std::string out;
+  for (const std::string_view name : kBoardTimingModels) out += (out.empty() ? "" : ", ") + std::string(name);
+  return out;
+}
+
 std::optional<DataPathTimingConfig> data_path_timing_model(const std::string& name) {
   if (name == "voxl2") return DataPathTimingConfig{};
   return std::nullopt;

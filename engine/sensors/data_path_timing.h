@@ -14,11 +14,13 @@
 // delays. Off, the frame passes unchanged.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <optional>
 #include <random>
 #include <string>
+#include <string_view>
 
 #include "engine/model/random_stream.h"
 #include "engine/sensors/samples.h"
@@ -52,7 +54,6 @@ class DataPathTiming {
   /// Back to the start (a reset run repeats its delays).
   void reset();
   const DataPathTimingFigures& figures() const { return figures_; }
-  const DataPathTimingConfig& config() const { return config_; }
 
  private:
   template <typename Sample>
@@ -76,7 +77,12 @@ class DataPathTiming {
   DataPathTimingFigures figures_;
 };
 
-/// The named models for --board-timing: "voxl2" (the spec's intervals); nullopt for "none".
+/// The names --board-timing takes, the one place they are listed: "none" (no delay) and "voxl2".
+inline constexpr std::array<std::string_view, 2> kBoardTimingModels = {"none", "voxl2"};
+/// "none, voxl2": the names for a message or a help text.
+std::string board_timing_model_list();
+/// The named models for --board-timing: "voxl2" (the spec's intervals); nullopt for "none" and any
+/// name not in kBoardTimingModels.
 std::optional<DataPathTimingConfig> data_path_timing_model(const std::string& name);
 
 }  // namespace hitl::sensors
