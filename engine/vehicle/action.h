@@ -32,6 +32,7 @@ struct Px4Mode {
 inline constexpr Px4Mode kPx4Position{3, 0};    ///< POSCTL: sticks are velocities
 inline constexpr Px4Mode kPx4Stabilized{7, 0};  ///< STABILIZED: sticks are tilt and thrust
 inline constexpr Px4Mode kPx4Hold{4, 3};        ///< AUTO.LOITER
+inline constexpr Px4Mode kPx4Takeoff{4, 2};     ///< AUTO.TAKEOFF
 
 // --- the requests ---------------------------------------------------------------------------
 /// COMPONENT_ARM_DISARM; `force` skips the preflight checks (arm) or disarms in the air (PX4's 21196).

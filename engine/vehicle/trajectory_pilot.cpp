@@ -77,6 +77,10 @@ void TrajectoryPilot::on_board_frame(const mavlink::Frame& f) {
       // The mode is set when the board shows it: PX4 SITL acknowledged a DO_SET_MODE as accepted and
       // then said "Switching to Position is currently not available" to the next one.
       mode_set_ = (hb.custom_mode & 0xFFFF0000u) == stick_mode().custom_mode();
+      // PX4 ends a takeoff in Hold (AUTO.LOITER); a failsafe out of it (Land, RTL) is no end.
+      const uint32_t mode = hb.custom_mode & 0xFFFF0000u;
+      if (mode == kPx4Takeoff.custom_mode()) takeoff_mode_seen_ = true;
+      else if (takeoff_mode_seen_ && armed_ && mode == kPx4Hold.custom_mode()) takeoff_ended_ = true;
     }
   } else if (f.is<msg::SysStatus>()) {
     ready_ = (f.as<msg::SysStatus>().onboard_control_sensors_health & mavlink::sys_status::kPrearmCheck) != 0;
@@ -211,7 +215,9 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
       if (!armed_) {
         failure_ = "the board disarmed during takeoff";
         enter(PilotState::Failed, t_s, out, failure_);
-      } else if (std::fabs(pose.p_ENU_m[2] - z0) < config_.takeoff_tolerance_m && takeoff_ack_ == 0) {
+      } else if ((std::fabs(pose.p_ENU_m[2] - z0) < config_.takeoff_tolerance_m || takeoff_ended_) && takeoff_ack_ == 0) {
+        // At the height, or the board ended its takeoff short of it (PX4 ends it on its own estimate
+        // and its MIS_TAKEOFF_ALT acceptance, and then holds where it is): the sticks fly the rest.
         // Centred sticks first: PX4 takes a manual mode only once its manual control input is
         // valid, which PX4 SITL (MANUAL_CONTROL) judged only after several samples: a second of them.
         if (centred_since_s_ < 0) centred_since_s_ = t_s;

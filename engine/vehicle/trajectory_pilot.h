@@ -145,6 +145,8 @@ class TrajectoryPilot {
   bool armed_ = false;
   bool ready_ = false;
   bool mode_set_ = false;  ///< the board's HEARTBEAT shows the mode the sticks are for
+  bool takeoff_mode_seen_ = false;  ///< the board's HEARTBEAT has shown AUTO.TAKEOFF
+  bool takeoff_ended_ = false;      ///< ... and then Hold, armed: the board ended its takeoff
   std::optional<uint8_t> takeoff_ack_;
   std::string failure_;
   ErrorStats tracking_;

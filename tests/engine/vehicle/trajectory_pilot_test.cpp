@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <optional>
 
 #include "base/mavlink/enums.h"
@@ -96,6 +97,40 @@ float fly_to_trajectory(TrajectoryPilot& pilot, Board& board, double& t_s) {
   pilot.step(t_s += 0.05, up);
   EXPECT_EQ(pilot.state(), PilotState::Trajectory);
   return main_mode;
+}
+
+/// To TAKEOFF, the takeoff acknowledged, the vehicle stopped at `short_pose` below the 2 m height;
+/// then `hb_modes` as the board's HEARTBEATs (armed). Whether the pilot went on to ask for its mode.
+bool asks_for_its_mode_after(std::initializer_list<Px4Mode> hb_modes) {
+  Board board;
+  TrajectoryPilot pilot(square(), PilotConfig{});
+  double t_s = 0;
+  PilotPose ground;
+  pilot.on_board_frame(board.ready());
+  pilot.step(t_s += 0.05, ground);
+  pilot.step(t_s += 0.05, ground);
+  pilot.on_board_frame(board.heartbeat(true));
+  pilot.step(t_s += 0.05, ground);
+  pilot.step(t_s += 0.05, ground);
+  pilot.on_board_frame(board.ack(mavlink::cmd::kNavTakeoff));
+  PilotPose short_pose = ground;
+  short_pose.p_ENU_m[2] = 1.2;  // 0.8 m short: PX4 v1.16 ended takeoffs 0.6-1.1 m short
+  for (const Px4Mode m : hb_modes) {
+    pilot.on_board_frame(board.heartbeat(true, m.custom_mode()));
+    pilot.step(t_s += 0.05, short_pose);
+  }
+  for (int i = 0; i < 60; ++i) {
+    for (const auto& c : pilot.step(t_s += 0.05, short_pose).commands)
+      if (c.command == mavlink::cmd::kDoSetMode) return true;
+  }
+  return false;
+}
+
+TEST(TrajectoryPilot, GoesOnWhenTheBoardEndsItsTakeoffShortOfTheHeight) {
+  EXPECT_FALSE(asks_for_its_mode_after({kPx4Takeoff})) << "still taking off, and short: it waits";
+  EXPECT_TRUE(asks_for_its_mode_after({kPx4Takeoff, kPx4Hold})) << "the board ended its takeoff and holds";
+  EXPECT_FALSE(asks_for_its_mode_after({kPx4Takeoff, Px4Mode{4, 6}})) << "a Land failsafe is no end of the takeoff";
+  EXPECT_FALSE(asks_for_its_mode_after({kPx4Hold})) << "Hold before any takeoff is no end of it";
 }
 
 TEST(TrajectoryPilot, VelocityModeFliesPositionModeWithVelocitySticks) {
