@@ -18,7 +18,8 @@ install(FILES ${PROJECT_SOURCE_DIR}/completions/_hitl
 install(FILES ${PROJECT_SOURCE_DIR}/completions/hitl.fish
         DESTINATION ${CMAKE_INSTALL_DATADIR}/fish/vendor_completions.d COMPONENT hitl)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/hitl.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT hitl)
-file(GLOB hitl_user_docs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/docs/*.md)
+# The pages and the images they show (report-demo.png, the Allan plots).
+file(GLOB hitl_user_docs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/docs/*.md ${PROJECT_SOURCE_DIR}/docs/*.png ${PROJECT_SOURCE_DIR}/docs/*.svg)
 install(FILES ${hitl_user_docs} ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT hitl)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples COMPONENT hitl
         FILES_MATCHING PATTERN "*.json" PATTERN "*.toml"

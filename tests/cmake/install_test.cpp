@@ -22,6 +22,9 @@ const std::vector<std::string>& installed_files() {
       "usr/share/doc/hitl/README.md",
       "usr/share/doc/hitl/guide.md",
       "usr/share/doc/hitl/config.md",
+      "usr/share/doc/hitl/engine.md",
+      "usr/share/doc/hitl/allan-icm-42688-p-gyro.svg",  // the images the pages show, beside them
+      "usr/share/doc/hitl/report-demo.png",
       "usr/share/doc/hitl/examples/hover.json",
       "usr/share/doc/hitl/examples/square.json",
       "usr/share/doc/hitl/examples/figure-eight.json",
