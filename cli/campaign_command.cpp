@@ -13,11 +13,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <mutex>
 #include <thread>
 
 #include "cli/board_stack.h"
 #include "cli/campaign_command.h"
+#include "cli/campaign_history.h"
+#include "cli/campaign_progress.h"
 #include "cli/commands.h"
 #include "cli/number_check.h"
 #include "cli/parse_errors.h"
@@ -51,25 +52,6 @@ struct CampaignRunOptions {
   std::string px4_dir;  ///< --px4 DIR: stack = "px4"'s build, over the file's px4 = "DIR"
 };
 
-struct CampaignHistoryOptions {
-  std::string campaign;  ///< empty: the campaign of the latest run
-  std::string history;
-  std::size_t last_runs = 10;
-};
-
-/// --history FILE, or the default under the user's data folder; the error names the option.
-Expected<std::string> history_path(const std::string& given) {
-  if (!given.empty()) return given;
-  auto path = campaign::default_history_path();
-  if (!path) return path.error().prefixed("--history: ");
-  return path;
-}
-
-/// The history a run goes into: none with --no-history (empty), else as history_path().
-Expected<std::string> run_history(bool no_history, const std::string& given) {
-  if (no_history) return std::string();
-  return history_path(given);
-}
 
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
@@ -79,87 +61,6 @@ std::string utc_now() {
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return text;
 }
-
-/// The board's and the session's events in a flight's process (its log.txt): warnings and errors,
-/// everything with -v.
-class FlightEvents : public target::Board::Observer, public hil::Session::Observer {
- public:
-  explicit FlightEvents(const GlobalOptions& g) : g_(g) {}
-  void on_event(const target::BoardEvent& e) override {
-    if (e.severity == Severity::Info && g_.verbosity == 0) return;
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::cerr << "hitl campaign: board: " << e.text << '\n';
-  }
-  void on_event(const hil::SessionEvent& e) override {
-    if (e.severity == hil::Severity::Info && g_.verbosity == 0) return;
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::cerr << "hitl campaign: " << e.text << '\n';
-  }
-
- private:
-  const GlobalOptions& g_;
-  std::mutex mutex_;
-};
-
-std::string duration_text(double s) {
-  char text[32];
-  if (s >= 3600) std::snprintf(text, sizeof text, "%dh%02dm", static_cast<int>(s / 3600), static_cast<int>(std::fmod(s, 3600) / 60));
-  else if (s >= 60) std::snprintf(text, sizeof text, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(std::fmod(s, 60)));
-  else std::snprintf(text, sizeof text, "%.0fs", s);
-  return text;
-}
-
-/// The progress line on a terminal (redrawn in place on stderr), a line per flight otherwise, or
-/// JSON status lines with --json.
-class RunPrinter : public campaign::RunObserver {
- public:
-  RunPrinter(const GlobalOptions& g, std::string name) : g_(g), name_(std::move(name)), tty_(::isatty(STDERR_FILENO) == 1) {}
-  void on_started(const campaign::Flight& f, pid_t pid) override {
-    if (g_.json)
-      print_json_line({{"type", "status"}, {"event", "started"}, {"index", f.index}, {"id", f.id}, {"name", f.name}, {"pid", pid}});
-  }
-  void on_finished(const campaign::Flight& f, const campaign::FlightResult& r) override {
-    if (g_.json) {
-      nlohmann::json failures = nlohmann::json::array();
-      for (const auto& v : r.verdicts)
-        if (!v.ok) failures.push_back(v.criterion + ": " + v.message);
-      print_json_line({{"type", "status"}, {"event", "finished"}, {"index", f.index}, {"id", f.id}, {"name", f.name},
-                       {"outcome", r.outcome}, {"reason", r.reason}, {"failures", failures}, {"summary_line", r.summary_line}});
-      return;
-    }
-    if (g_.quiet && r.outcome == "passed") return;
-    clear_line();
-    std::string line = "hitl campaign: " + r.outcome + "  " + r.summary_line;
-    for (const auto& v : r.verdicts)
-      if (!v.ok && v.criterion != "flown") line += "\n    " + v.criterion + ": " + v.message;
-    std::cerr << line << '\n';
-  }
-  void on_progress(const campaign::Progress& p) override {
-    if (g_.json) {
-      print_json_line({{"type", "status"}, {"event", "progress"}, {"total", p.total}, {"done", p.done}, {"passed", p.passed},
-                       {"failed", p.failed}, {"running", p.running}, {"kept", p.kept}, {"elapsed_s", p.elapsed_s},
-                       {"eta_s", p.eta_s ? nlohmann::json(*p.eta_s) : nlohmann::json(nullptr)}});
-      return;
-    }
-    if (!tty_ || g_.quiet) return;
-    char line[200];
-    std::snprintf(line, sizeof line, "campaign %s: %zu/%zu done, %zu failed, %zu running, %s elapsed, ETA %s", name_.c_str(),
-                  p.done, p.total, p.failed, p.running, duration_text(p.elapsed_s).c_str(),
-                  p.eta_s ? duration_text(*p.eta_s).c_str() : "?");
-    std::cerr << "\r\033[K" << line << std::flush;
-    drawn_ = true;
-  }
-  void clear_line() {
-    if (drawn_) std::cerr << "\r\033[K";
-    drawn_ = false;
-  }
-
- private:
-  const GlobalOptions& g_;
-  std::string name_;
-  bool tty_;
-  bool drawn_ = false;
-};
 
 /// This hitl, for the children.
 std::string self_path() {
@@ -435,53 +336,6 @@ int run_slurm_command(const GlobalOptions& g, const CampaignSlurmOptions& o) {
               << " once collect has run; squeue -j " << submitted->flights_job << "," << submitted->collect_job << ")\n";
   }
   return kExitOk;
-}
-
-int run_history_command(const GlobalOptions& g, const CampaignHistoryOptions& o) {
-  auto path = history_path(o.history);
-  if (!path) return log_error("campaign", path.error());
-  std::string name = o.campaign;
-  if (name.empty()) {
-    auto names = campaign::history_campaigns(*path);
-    if (!names) return log_error("campaign", names.error());
-    if (names->empty()) return log_error("campaign", Error::input("history " + *path + ": no runs yet"));
-    name = names->front();
-  }
-  auto h = campaign::read_history(*path, name, o.last_runs);
-  if (!h) return log_error("campaign", h.error());
-  bool regression = false;
-  for (const auto& t : h->trends) regression = regression || t.regression;
-  if (g.json) {
-    nlohmann::json trends = nlohmann::json::array();
-    for (const auto& t : h->trends) {
-      nlohmann::json points = nlohmann::json::array();
-      for (const auto& p : t.points)
-        points.push_back({{"run", p.run}, {"label", p.label}, {"stack_version", p.stack_version}, {"started_utc", p.started_utc}, {"flights", p.flights},
-                          {"failed", p.failed}, {"mean", p.flights > 0 ? nlohmann::json(p.mean) : nlohmann::json(nullptr)},
-                          {"worst", p.flights > 0 ? nlohmann::json(p.worst) : nlohmann::json(nullptr)}});
-      trends.push_back({{"criterion", t.criterion}, {"figure", t.figure}, {"limit", t.limit}, {"points", points},
-                        {"regression", t.regression}, {"verdict", t.verdict}});
-    }
-    print_json_line({{"type", "summary"}, {"campaign", h->campaign}, {"history", *path}, {"runs", h->runs},
-                     {"regression", regression}, {"trends", trends}});
-  } else {
-    std::cout << "campaign " << h->campaign << ": " << h->runs << " runs in " << *path << "\n";
-    for (const auto& t : h->trends) {
-      std::cout << "\n" << t.criterion << " (" << t.figure << " " << t.limit << ")\n";
-      for (const auto& p : t.points) {
-        char line[256];
-        if (p.flights > 0)
-          std::snprintf(line, sizeof line, "  run %-4lld %-20s %-16s mean %-10.4g worst %-10.4g failed %zu", static_cast<long long>(p.run),
-                        p.started_utc.c_str(), p.label.empty() ? "-" : p.label.c_str(), p.mean, p.worst, p.failed);
-        else
-          std::snprintf(line, sizeof line, "  run %-4lld %-20s %-16s failed %zu", static_cast<long long>(p.run), p.started_utc.c_str(),
-                        p.label.empty() ? "-" : p.label.c_str(), p.failed);
-        std::cout << line << (p.stack_version.empty() ? "" : "  (PX4 " + p.stack_version + ")") << '\n';
-      }
-      std::cout << "  " << t.verdict << '\n';
-    }
-  }
-  return regression ? kExitFailed : kExitOk;
 }
 
 }  // namespace
