@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "base/mavlink/enums.h"
 #include "engine/vehicle/action.h"
@@ -30,6 +31,13 @@ std::array<double, 3> velocity_setpoint(bool flying, const TrajectoryReference& 
   std::array<double, 3> v{};
   for (std::size_t k = 0; k < 3; ++k) v[k] = (flying ? ref.v_ENU_m_s[k] : 0.0) + kp_1_s * (ref.p_ENU_m[k] - pose.p_ENU_m[k]);
   return v;
+}
+
+/// "2.50": a height for an event line.
+std::string metres_text(double m) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", m);
+  return text;
 }
 
 }  // namespace
@@ -231,8 +239,11 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
           trajectory_start_s_ = t_s;
           last_rc_t_s_ = -1;
           hover_integral_ = 0;
+          const double z_m = pose.p_ENU_m[2];
+          const bool short_of_it = std::fabs(z_m - z0) >= config_.takeoff_tolerance_m;
           enter(PilotState::Trajectory, t_s, out,
-                "at " + std::to_string(z0).substr(0, 4) + " m, " + (attitude ? "Stabilized" : "Position") + " mode");
+                "at " + metres_text(short_of_it ? z_m : z0) + " m, " + (attitude ? "Stabilized" : "Position") + " mode" +
+                    (short_of_it ? "; the board ended its takeoff " + metres_text(z0 - z_m) + " m short" : ""));
         }
       } else if (takeoff_ack_ != 0 && resend) {
         out.commands.push_back(command(takeoff_request(config_.home_alt_msl_m + z0)));
