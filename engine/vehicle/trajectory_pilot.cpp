@@ -229,21 +229,37 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         // Centred sticks first: PX4 takes a manual mode only once its manual control input is
         // valid, which PX4 SITL (MANUAL_CONTROL) judged only after several samples: a second of them.
         if (centred_since_s_ < 0) centred_since_s_ = t_s;
-        if (sticks_due(t_s)) send_sticks(t_s, sticks(0, 0, 0, 0.5), out);
         const bool attitude = config_.mode == StickMode::Attitude;
-        if (!mode_set_ && resend && t_s - centred_since_s_ >= kCentredBeforeMode_s) {
-          out.commands.push_back(command(set_mode_request(stick_mode())));
-          last_command_s_ = t_s;
-        }
-        if (mode_set_) {
+        const bool at_height = std::fabs(pose.p_ENU_m[2] - z0) < config_.takeoff_tolerance_m;
+        if (!mode_set_) {
+          if (sticks_due(t_s)) send_sticks(t_s, sticks(0, 0, 0, 0.5), out);
+          if (resend && t_s - centred_since_s_ >= kCentredBeforeMode_s) {
+            out.commands.push_back(command(set_mode_request(stick_mode())));
+            last_command_s_ = t_s;
+          }
+        } else if (!at_height) {
+          // Short of the height in the sticks' mode: they climb to the first waypoint before its
+          // clock starts, so the trajectory's tracking starts where the trajectory does.
+          if (!short_by_m_) {
+            short_by_m_ = z0 - pose.p_ENU_m[2];
+            last_rc_t_s_ = -1;
+            hover_integral_ = 0;
+          }
+          const auto first = trajectory_.at(0.0);
+          out.reference = first;
+          if (sticks_due(t_s)) {
+            const double dt_s = last_rc_t_s_ < 0 ? 1.0 / config_.rc_rate_hz : std::clamp(t_s - last_rc_t_s_, 0.0, 0.2);
+            last_rc_t_s_ = t_s;
+            send_sticks(t_s, attitude ? attitude_sticks(first, pose, dt_s) : velocity_sticks(first, pose), out);
+          }
+        } else {
           trajectory_start_s_ = t_s;
           last_rc_t_s_ = -1;
           hover_integral_ = 0;
-          const double z_m = pose.p_ENU_m[2];
-          const bool short_of_it = std::fabs(z_m - z0) >= config_.takeoff_tolerance_m;
           enter(PilotState::Trajectory, t_s, out,
-                "at " + metres_text(short_of_it ? z_m : z0) + " m, " + (attitude ? "Stabilized" : "Position") + " mode" +
-                    (short_of_it ? "; the board ended its takeoff " + metres_text(z0 - z_m) + " m short" : ""));
+                "at " + metres_text(z0) + " m, " + (attitude ? "Stabilized" : "Position") + " mode" +
+                    (short_by_m_ ? "; the board ended its takeoff " + metres_text(*short_by_m_) + " m short, the sticks climbed the rest"
+                                 : ""));
         }
       } else if (takeoff_ack_ != 0 && resend) {
         out.commands.push_back(command(takeoff_request(config_.home_alt_msl_m + z0)));

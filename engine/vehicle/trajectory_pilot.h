@@ -147,6 +147,7 @@ class TrajectoryPilot {
   bool mode_set_ = false;  ///< the board's HEARTBEAT shows the mode the sticks are for
   bool takeoff_mode_seen_ = false;  ///< the board's HEARTBEAT has shown AUTO.TAKEOFF
   bool takeoff_ended_ = false;      ///< ... and then Hold, armed: the board ended its takeoff
+  std::optional<double> short_by_m_;  ///< how far short of the height the board ended it (the sticks climb the rest)
   std::optional<uint8_t> takeoff_ack_;
   std::string failure_;
   ErrorStats tracking_;

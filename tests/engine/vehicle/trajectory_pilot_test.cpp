@@ -133,6 +133,40 @@ TEST(TrajectoryPilot, GoesOnWhenTheBoardEndsItsTakeoffShortOfTheHeight) {
   EXPECT_FALSE(asks_for_its_mode_after({kPx4Hold})) << "Hold before any takeoff is no end of it";
 }
 
+TEST(TrajectoryPilot, ClimbsTheRestInItsModeBeforeTheTrajectorysClockStarts) {
+  Board board;
+  TrajectoryPilot pilot(square(), PilotConfig{});
+  double t_s = 0;
+  PilotPose pose;
+  pose.yaw_ENU_rad = M_PI / 2;
+  pilot.on_board_frame(board.ready());
+  pilot.step(t_s += 0.05, pose);
+  pilot.step(t_s += 0.05, pose);
+  pilot.on_board_frame(board.heartbeat(true));
+  pilot.step(t_s += 0.05, pose);
+  pilot.step(t_s += 0.05, pose);
+  pilot.on_board_frame(board.ack(mavlink::cmd::kNavTakeoff));
+  pose.p_ENU_m[2] = 1.2;  // the board's takeoff ends 0.8 m short of the square's 2 m
+  pilot.on_board_frame(board.heartbeat(true, kPx4Takeoff.custom_mode()));
+  pilot.on_board_frame(board.heartbeat(true, kPx4Hold.custom_mode()));
+  for (int i = 0; i < 40; ++i) pilot.step(t_s += 0.05, pose);
+  pilot.on_board_frame(board.heartbeat(true, kPx4Position.custom_mode()));  // the sticks' mode taken
+  // Still TAKEOFF, the sticks climbing (throttle above centre), no tracking yet.
+  bool climbed = false;
+  for (int i = 0; i < 10; ++i) {
+    const auto out = pilot.step(t_s += 0.05, pose);
+    EXPECT_FALSE(out.tracking_error_m);
+    if (out.rc && out.rc->chan3_raw > 1550) climbed = true;
+  }
+  EXPECT_TRUE(climbed);
+  EXPECT_EQ(pilot.state(), PilotState::Takeoff);
+  pose.p_ENU_m[2] = 1.9;  // within 0.3 m: the trajectory starts
+  const auto out = pilot.step(t_s += 0.05, pose);
+  EXPECT_EQ(pilot.state(), PilotState::Trajectory);
+  ASSERT_TRUE(out.event);
+  EXPECT_EQ(*out.event, "trajectory: TRAJECTORY (at 2.00 m, Position mode; the board ended its takeoff 0.80 m short, the sticks climbed the rest)");
+}
+
 TEST(TrajectoryPilot, VelocityModeFliesPositionModeWithVelocitySticks) {
   Board board;
   TrajectoryPilot pilot(square(), PilotConfig{});
