@@ -99,6 +99,17 @@ float fly_to_trajectory(TrajectoryPilot& pilot, Board& board, double& t_s) {
   return main_mode;
 }
 
+/// Ready, armed, its takeoff requested and acknowledged: the pilot in TAKEOFF, on the ground at `pose`.
+void to_acknowledged_takeoff(TrajectoryPilot& pilot, Board& board, double& t_s, const PilotPose& pose) {
+  pilot.on_board_frame(board.ready());
+  pilot.step(t_s += 0.05, pose);
+  pilot.step(t_s += 0.05, pose);
+  pilot.on_board_frame(board.heartbeat(true));
+  pilot.step(t_s += 0.05, pose);
+  pilot.step(t_s += 0.05, pose);
+  pilot.on_board_frame(board.ack(mavlink::cmd::kNavTakeoff));
+}
+
 /// To TAKEOFF, the takeoff acknowledged, the vehicle stopped at `short_pose` below the 2 m height;
 /// then `hb_modes` as the board's HEARTBEATs (armed). Whether the pilot went on to ask for its mode.
 bool asks_for_its_mode_after(std::initializer_list<Px4Mode> hb_modes) {
@@ -106,13 +117,7 @@ bool asks_for_its_mode_after(std::initializer_list<Px4Mode> hb_modes) {
   TrajectoryPilot pilot(square(), PilotConfig{});
   double t_s = 0;
   PilotPose ground;
-  pilot.on_board_frame(board.ready());
-  pilot.step(t_s += 0.05, ground);
-  pilot.step(t_s += 0.05, ground);
-  pilot.on_board_frame(board.heartbeat(true));
-  pilot.step(t_s += 0.05, ground);
-  pilot.step(t_s += 0.05, ground);
-  pilot.on_board_frame(board.ack(mavlink::cmd::kNavTakeoff));
+  to_acknowledged_takeoff(pilot, board, t_s, ground);
   PilotPose short_pose = ground;
   short_pose.p_ENU_m[2] = 1.2;  // 0.8 m short: PX4 v1.16 ended takeoffs 0.6-1.1 m short
   for (const Px4Mode m : hb_modes) {
@@ -139,13 +144,7 @@ TEST(TrajectoryPilot, ClimbsTheRestInItsModeBeforeTheTrajectorysClockStarts) {
   double t_s = 0;
   PilotPose pose;
   pose.yaw_ENU_rad = M_PI / 2;
-  pilot.on_board_frame(board.ready());
-  pilot.step(t_s += 0.05, pose);
-  pilot.step(t_s += 0.05, pose);
-  pilot.on_board_frame(board.heartbeat(true));
-  pilot.step(t_s += 0.05, pose);
-  pilot.step(t_s += 0.05, pose);
-  pilot.on_board_frame(board.ack(mavlink::cmd::kNavTakeoff));
+  to_acknowledged_takeoff(pilot, board, t_s, pose);
   pose.p_ENU_m[2] = 1.2;  // the board's takeoff ends 0.8 m short of the square's 2 m
   pilot.on_board_frame(board.heartbeat(true, kPx4Takeoff.custom_mode()));
   pilot.on_board_frame(board.heartbeat(true, kPx4Hold.custom_mode()));
