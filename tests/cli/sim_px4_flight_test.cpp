@@ -281,7 +281,11 @@ TEST_F(Px4Flight, HoverReportMergesPx4sOwnULogAgainstTheTruth) {
   EXPECT_EQ(j["ulog"]["path"].get<std::string>().rfind(dir + "/h.px4/log/", 0), 0u) << j.dump();
   EXPECT_GT(j["ulog"]["positions"].get<int>(), 100);
   ASSERT_TRUE(j["ulog"]["lag_ms"].is_number()) << j.dump();
-  EXPECT_LT(std::abs(j["ulog"]["lag_ms"].get<double>()), 100.0) << "one clock: PX4's estimate follows within a sample";
+  // One clock: two clocks apart show as seconds. The fitted lag depends on how the height changed:
+  // 36-40 ms when PX4's own takeoff climbed all the way, 100-108 ms since the pilot's sticks climb the
+  // last 0.6 m after PX4 ends its takeoff short (a slow approach, where an estimate error that moves
+  // reads as lag).
+  EXPECT_LT(std::abs(j["ulog"]["lag_ms"].get<double>()), 200.0) << "one clock: PX4's estimate follows within two samples";
   // The hover alone: the last 5 s of the trajectory (the pilot's setpoints), PX4's estimate minus truth.
   auto log = report::read_flight_log(tlog);
   ASSERT_TRUE(log) << log.error().message;
