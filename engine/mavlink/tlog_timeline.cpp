@@ -34,11 +34,66 @@ void TlogTimeline::keep(TlogRecord record, bool new_segment) {
   ready_.push_back({std::move(record), new_segment});
 }
 
+void TlogTimeline::judge_after_jump(TlogRecord r) {
+  for (;;) {
+    const uint64_t jumped_us = jumped_->time_unix_us;
+    if (time_us_ && near(r.time_unix_us, *time_us_, kJump_us, kJump_us)) {
+      // The log runs on from before the jump: the jump (and a record running on from it) were bad stamps.
+      stats_.set_aside_records += confirm_ ? 2 : 1;
+      jumped_.reset();
+      confirm_.reset();
+      keep(std::move(r), false);
+      return;
+    }
+    const bool back = time_us_ && jumped_us < *time_us_;
+    const TlogRecord& last = confirm_ ? *confirm_ : *jumped_;
+    // Runs on from the jumped record (a jump back: only a record that is back too, not one running
+    // on, after a gap, from the log's time).
+    const bool runs_on = near(r.time_unix_us, last.time_unix_us, kJump_us, kMaxGap_us) &&
+                         (!back || r.time_unix_us + kJump_us < *time_us_);
+    if (runs_on && !confirm_ && time_us_) {  // (the log's first record: one record decides)
+      // A jump needs two records running on from it: in a log with 1 % of its bytes flipped, two
+      // bad stamps a few seconds apart, one after the other among the frames that still check,
+      // are common enough (a join or a pause has hundreds of records after it).
+      confirm_ = std::move(r);
+      return;
+    }
+    if (runs_on) {
+      // The log goes on from the jumped record: a new segment unless it was a pause forward.
+      const bool pause = time_us_ && jumped_us > *time_us_ && jumped_us - *time_us_ <= kMaxGap_us;
+      keep(std::move(*jumped_), !pause);
+      jumped_.reset();
+      if (confirm_) keep(std::move(*confirm_), false);
+      confirm_.reset();
+      // This one is judged afresh from there: it runs on, or it jumps (a slow stream's next record).
+      if (near(r.time_unix_us, *time_us_, kJump_us, kJump_us)) keep(std::move(r), false);
+      else jumped_ = std::move(r);
+      return;
+    }
+    ++stats_.set_aside_records;  // neither: the jumped one goes
+    if (!confirm_) {
+      jumped_ = std::move(r);  // this one (a jump too) waits in its place
+      return;
+    }
+    jumped_ = std::move(*confirm_);  // the record after it takes its place; this one is judged against it
+    confirm_.reset();
+  }
+}
+
 bool TlogTimeline::next(TimedRecord& out) {
   TlogRecord r;
   while (ready_.empty()) {
     if (!reader_.next(r)) {
       if (!jumped_) return false;
+      if (confirm_) {  // a jump and one record running on from it, the log's last two: kept
+        const uint64_t jumped_us = jumped_->time_unix_us;
+        const bool pause = time_us_ && jumped_us > *time_us_ && jumped_us - *time_us_ <= kMaxGap_us;
+        keep(std::move(*jumped_), !pause);
+        keep(std::move(*confirm_), false);
+        jumped_.reset();
+        confirm_.reset();
+        break;
+      }
       // The last record jumped: kept when nothing contradicts it (the log's only record, or a
       // pause ahead of at most kMaxGap_s, as a slow stream's last), else set aside.
       if (!time_us_ || near(jumped_->time_unix_us, *time_us_, 0, kMaxGap_us)) {
@@ -59,24 +114,7 @@ bool TlogTimeline::next(TimedRecord& out) {
       else jumped_ = std::move(r);  // the first record too waits for a second to confirm it
       continue;
     }
-    const uint64_t jumped_us = jumped_->time_unix_us;
-    if (time_us_ && near(r.time_unix_us, *time_us_, kJump_us, kJump_us)) {
-      ++stats_.set_aside_records;  // the log runs on from before the jump: the jump was a bad stamp
-      jumped_.reset();
-      keep(std::move(r), false);
-    } else if (near(r.time_unix_us, jumped_us, kJump_us, kMaxGap_us) &&
-               (!time_us_ || jumped_us > *time_us_ || r.time_unix_us + kJump_us < *time_us_)) {
-      // (A jump back is confirmed only by a record that is back too, not one running on, after
-      // a gap, from the log's time.)
-      // The log goes on from the jumped record: a new segment unless it was a pause forward.
-      const bool pause = time_us_ && jumped_us > *time_us_ && jumped_us - *time_us_ <= kMaxGap_us;
-      keep(std::move(*jumped_), !pause);
-      jumped_.reset();
-      keep(std::move(r), false);
-    } else {
-      ++stats_.set_aside_records;  // neither: the jumped one goes, this one (a jump too) waits in its place
-      jumped_ = std::move(r);
-    }
+    judge_after_jump(std::move(r));
   }
   out = std::move(ready_.front());
   ready_.pop_front();

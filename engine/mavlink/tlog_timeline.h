@@ -4,9 +4,10 @@
 // factor; measuring within the stretches that run on gives the true ones.
 //
 // Rules: a record more than kJump_s before or after the log's time so far is a jump, and the next
-// record decides it. When that record runs on from the log's time, the jumped one is set aside (a
-// corrupted stamp: counted, not measured). When it runs on from the jumped one (within kMaxGap_s
-// after it; after a jump back, only a record that is back too), the log goes on from there: a jump back or a jump forward of more than kMaxGap_s
+// two records decide it. When the next runs on from the log's time, the jumped one is set aside (a
+// corrupted stamp: counted, not measured). When the next two run on from the jumped one, each from
+// the one before (within kMaxGap_s after it; after a jump back, only records that are back too), the
+// log goes on from there: a jump back or a jump forward of more than kMaxGap_s
 // starts a new segment, a shorter pause stays in the segment. The last record, when it jumped, is
 // kept as a pause (ahead by at most kMaxGap_s) or when it is the log's only one, else set aside. Within kJump_s a record's time
 // may go back a little (a clock step): it stays.
@@ -57,6 +58,8 @@ class TlogTimeline {
 
  private:
   void keep(TlogRecord record, bool new_segment);
+  /// `r` (its frame checks) after a jumped record: sets the jumped one aside or keeps it.
+  void judge_after_jump(TlogRecord r);
 
   bool checks(const TlogRecord& record);
 
@@ -65,6 +68,7 @@ class TlogTimeline {
   std::optional<FrameParser> checker_;
   std::optional<uint64_t> time_us_;  ///< the log's time so far (the last kept stamp)
   std::optional<TlogRecord> jumped_;  ///< a record that jumped, waiting for the next to decide
+  std::optional<TlogRecord> confirm_;  ///< after a jump, a record running on from it, waiting for a third
   std::deque<TimedRecord> ready_;
   TimelineStats stats_;
 };

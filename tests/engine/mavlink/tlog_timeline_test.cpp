@@ -48,9 +48,11 @@ constexpr uint64_t T = 1'700'000'000'000'000;  // 2023, in us
 constexpr uint64_t ms = 1000, s = 1'000'000;
 
 TEST(TlogTimeline, AJoinBackStartsASegment) {
-  const auto r = through_timeline({T, T + 4 * ms, T + 8 * ms, T + 2 * s, T + 2 * s + 4 * ms, T, T + 4 * ms, T + 8 * ms});
+  // (A pause of 2 s, three records, then the join: a jump is decided by the two records after it.)
+  const auto r = through_timeline({T, T + 4 * ms, T + 8 * ms, T + 2 * s, T + 2 * s + 4 * ms, T + 2 * s + 8 * ms, T, T + 4 * ms, T + 8 * ms});
   EXPECT_EQ(r.kept, (std::vector<std::string>{std::to_string(T), std::to_string(T + 4 * ms), std::to_string(T + 8 * ms),
-                                               std::to_string(T + 2 * s), std::to_string(T + 2 * s + 4 * ms), "|" + std::to_string(T),
+                                               std::to_string(T + 2 * s), std::to_string(T + 2 * s + 4 * ms),
+                                               std::to_string(T + 2 * s + 8 * ms), "|" + std::to_string(T),
                                                std::to_string(T + 4 * ms), std::to_string(T + 8 * ms)}));
   EXPECT_EQ(r.stats.segments, 2u);
   EXPECT_EQ(r.stats.set_aside_records, 0u);
@@ -109,6 +111,32 @@ TEST(TlogTimeline, BadStampsAheadDoNotRatchetTheLogsTimeAndABackJumpNeedsARecord
   EXPECT_EQ(gap.stats.segments, 1u);
   EXPECT_EQ(gap.stats.set_aside_records, 1u);
   EXPECT_EQ(gap.kept.back(), std::to_string(T + 11504 * ms));
+}
+
+TEST(TlogTimeline, TwoBadStampsOneAfterTheOtherAreSetAsideNotASegment) {
+  // As a log with 1 % of its bytes flipped had them among the frames that still check: 7.5 s and
+  // 3.7 s back, then the log runs on. One record back with the first confirmed it before.
+  const auto r = through_timeline({T, T + 4 * ms, T - 7536 * ms, T - 3736 * ms, T + 8 * ms, T + 12 * ms});
+  EXPECT_EQ(r.stats.segments, 1u);
+  EXPECT_EQ(r.stats.set_aside_records, 2u);
+  EXPECT_EQ(r.kept, (std::vector<std::string>{std::to_string(T), std::to_string(T + 4 * ms), std::to_string(T + 8 * ms),
+                                               std::to_string(T + 12 * ms)}));
+  // A bad stamp back, then a join back further (not running on from it): the bad one set aside, the
+  // log goes on from the join once two records run on from it.
+  const auto join = through_timeline({T, T + 4 * ms, T - 30 * s, T - 95 * s, T - 95 * s + 4 * ms, T - 95 * s + 8 * ms});
+  EXPECT_EQ(join.stats.segments, 2u);
+  EXPECT_EQ(join.stats.set_aside_records, 1u);
+  EXPECT_EQ(join.kept[2], "|" + std::to_string(T - 95 * s));
+  // The same ahead (1.8 s and 5.6 s): one record running on from the first confirmed it as a pause,
+  // and the log's return made a second segment.
+  const auto ahead = through_timeline({T, T + 4 * ms, T + 1772 * ms, T + 5575 * ms, T + 8 * ms, T + 12 * ms});
+  EXPECT_EQ(ahead.stats.segments, 1u);
+  EXPECT_EQ(ahead.stats.set_aside_records, 2u);
+  EXPECT_EQ(ahead.kept.size(), 4u);
+  // A join back as the log's last two records: kept.
+  const auto last_two = through_timeline({T, T + 4 * ms, T - 30 * s, T - 30 * s + 4 * ms});
+  EXPECT_EQ(last_two.stats.segments, 2u);
+  EXPECT_EQ(last_two.kept.size(), 4u);
 }
 
 TEST(TlogTimeline, AOneRecordLogIsKept) {
