@@ -34,6 +34,16 @@ void TlogTimeline::keep(TlogRecord record, bool new_segment) {
   ready_.push_back({std::move(record), new_segment});
 }
 
+void TlogTimeline::keep_jumped() {
+  // The log goes on from the jumped record: a new segment unless it was a pause forward.
+  const uint64_t jumped_us = jumped_->time_unix_us;
+  const bool pause = time_us_ && jumped_us > *time_us_ && jumped_us - *time_us_ <= kMaxGap_us;
+  keep(std::move(*jumped_), !pause);
+  jumped_.reset();
+  if (confirm_) keep(std::move(*confirm_), false);
+  confirm_.reset();
+}
+
 void TlogTimeline::judge_after_jump(TlogRecord r) {
   for (;;) {
     const uint64_t jumped_us = jumped_->time_unix_us;
@@ -59,12 +69,7 @@ void TlogTimeline::judge_after_jump(TlogRecord r) {
       return;
     }
     if (runs_on) {
-      // The log goes on from the jumped record: a new segment unless it was a pause forward.
-      const bool pause = time_us_ && jumped_us > *time_us_ && jumped_us - *time_us_ <= kMaxGap_us;
-      keep(std::move(*jumped_), !pause);
-      jumped_.reset();
-      if (confirm_) keep(std::move(*confirm_), false);
-      confirm_.reset();
+      keep_jumped();
       // This one is judged afresh from there: it runs on, or it jumps (a slow stream's next record).
       if (near(r.time_unix_us, *time_us_, kJump_us, kJump_us)) keep(std::move(r), false);
       else jumped_ = std::move(r);
@@ -86,12 +91,7 @@ bool TlogTimeline::next(TimedRecord& out) {
     if (!reader_.next(r)) {
       if (!jumped_) return false;
       if (confirm_) {  // a jump and one record running on from it, the log's last two: kept
-        const uint64_t jumped_us = jumped_->time_unix_us;
-        const bool pause = time_us_ && jumped_us > *time_us_ && jumped_us - *time_us_ <= kMaxGap_us;
-        keep(std::move(*jumped_), !pause);
-        keep(std::move(*confirm_), false);
-        jumped_.reset();
-        confirm_.reset();
+        keep_jumped();
         break;
       }
       // The last record jumped: kept when nothing contradicts it (the log's only record, or a

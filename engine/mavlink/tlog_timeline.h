@@ -58,6 +58,8 @@ class TlogTimeline {
 
  private:
   void keep(TlogRecord record, bool new_segment);
+  /// Keeps the jumped record (a new segment unless a pause forward) and the one confirming it.
+  void keep_jumped();
   /// `r` (its frame checks) after a jumped record: sets the jumped one aside or keeps it.
   void judge_after_jump(TlogRecord r);
 

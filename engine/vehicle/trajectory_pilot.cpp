@@ -84,9 +84,9 @@ void TrajectoryPilot::on_board_frame(const mavlink::Frame& f) {
       armed_ = shows_armed(hb);
       // The mode is set when the board shows it: PX4 SITL acknowledged a DO_SET_MODE as accepted and
       // then said "Switching to Position is currently not available" to the next one.
-      mode_set_ = (hb.custom_mode & 0xFFFF0000u) == stick_mode().custom_mode();
-      // PX4 ends a takeoff in Hold (AUTO.LOITER); a failsafe out of it (Land, RTL) is no end.
       const uint32_t mode = hb.custom_mode & 0xFFFF0000u;
+      mode_set_ = mode == stick_mode().custom_mode();
+      // PX4 ends a takeoff in Hold (AUTO.LOITER); a failsafe out of it (Land, RTL) is no end.
       if (mode == kPx4Takeoff.custom_mode()) takeoff_mode_seen_ = true;
       else if (takeoff_mode_seen_ && armed_ && mode == kPx4Hold.custom_mode()) takeoff_ended_ = true;
     }
@@ -136,6 +136,12 @@ void TrajectoryPilot::send_sticks(double t_s, const msg::RcChannelsOverride& rc,
   out.rc = rc;
   out.manual = manual_control_for(rc);
   last_sticks_ = rc;
+}
+
+void TrajectoryPilot::fly_sticks_to(const TrajectoryReference& ref, const PilotPose& pose, double t_s, PilotOutput& out) {
+  const double dt_s = last_rc_t_s_ < 0 ? 1.0 / config_.rc_rate_hz : std::clamp(t_s - last_rc_t_s_, 0.0, 0.2);
+  last_rc_t_s_ = t_s;
+  send_sticks(t_s, config_.mode == StickMode::Attitude ? attitude_sticks(ref, pose, dt_s) : velocity_sticks(ref, pose), out);
 }
 
 void TrajectoryPilot::enter(PilotState next, double t_s, PilotOutput& out, const std::string& why) {
@@ -219,18 +225,18 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         last_command_s_ = t_s;
       }
       break;
-    case PilotState::Takeoff:
+    case PilotState::Takeoff: {
+      const bool at_height = std::fabs(pose.p_ENU_m[2] - z0) < config_.takeoff_tolerance_m;
       if (!armed_) {
         failure_ = "the board disarmed during takeoff";
         enter(PilotState::Failed, t_s, out, failure_);
-      } else if ((std::fabs(pose.p_ENU_m[2] - z0) < config_.takeoff_tolerance_m || takeoff_ended_) && takeoff_ack_ == 0) {
+      } else if ((at_height || takeoff_ended_) && takeoff_ack_ == 0) {
         // At the height, or the board ended its takeoff short of it (PX4 ends it on its own estimate
         // and its MIS_TAKEOFF_ALT acceptance, and then holds where it is): the sticks fly the rest.
         // Centred sticks first: PX4 takes a manual mode only once its manual control input is
         // valid, which PX4 SITL (MANUAL_CONTROL) judged only after several samples: a second of them.
         if (centred_since_s_ < 0) centred_since_s_ = t_s;
         const bool attitude = config_.mode == StickMode::Attitude;
-        const bool at_height = std::fabs(pose.p_ENU_m[2] - z0) < config_.takeoff_tolerance_m;
         if (!mode_set_) {
           if (sticks_due(t_s)) send_sticks(t_s, sticks(0, 0, 0, 0.5), out);
           if (resend && t_s - centred_since_s_ >= kCentredBeforeMode_s) {
@@ -247,11 +253,7 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
           }
           const auto first = trajectory_.at(0.0);
           out.reference = first;
-          if (sticks_due(t_s)) {
-            const double dt_s = last_rc_t_s_ < 0 ? 1.0 / config_.rc_rate_hz : std::clamp(t_s - last_rc_t_s_, 0.0, 0.2);
-            last_rc_t_s_ = t_s;
-            send_sticks(t_s, attitude ? attitude_sticks(first, pose, dt_s) : velocity_sticks(first, pose), out);
-          }
+          if (sticks_due(t_s)) fly_sticks_to(first, pose, t_s, out);
         } else {
           trajectory_start_s_ = t_s;
           last_rc_t_s_ = -1;
@@ -266,6 +268,7 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         last_command_s_ = t_s;
       }
       break;
+    }
     case PilotState::Trajectory:
     case PilotState::Hold: {
       const double tt = t_s - trajectory_start_s_;
@@ -281,11 +284,7 @@ PilotOutput TrajectoryPilot::step(double t_s, const PilotPose& pose) {
         enter(PilotState::Land, t_s, out);
         break;
       }
-      if (sticks_due(t_s)) {
-        const double dt_s = last_rc_t_s_ < 0 ? 1.0 / config_.rc_rate_hz : std::clamp(t_s - last_rc_t_s_, 0.0, 0.2);
-        last_rc_t_s_ = t_s;
-        send_sticks(t_s, config_.mode == StickMode::Attitude ? attitude_sticks(ref, pose, dt_s) : velocity_sticks(ref, pose), out);
-      }
+      if (sticks_due(t_s)) fly_sticks_to(ref, pose, t_s, out);
       break;
     }
     case PilotState::Land:

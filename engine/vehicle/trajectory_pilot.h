@@ -118,6 +118,8 @@ class TrajectoryPilot {
   Px4Mode stick_mode() const { return config_.mode == StickMode::Attitude ? kPx4Stabilized : kPx4Position; }
   mavlink::msg::RcChannelsOverride sticks(double roll, double pitch, double yaw, double throttle) const;
   mavlink::msg::RcChannelsOverride velocity_sticks(const TrajectoryReference& ref, const PilotPose& pose) const;
+  /// Sends the sticks that fly towards `ref` in the pilot's stick mode (its dt from the last sticks).
+  void fly_sticks_to(const TrajectoryReference& ref, const PilotPose& pose, double t_s, PilotOutput& out);
   mavlink::msg::RcChannelsOverride attitude_sticks(const TrajectoryReference& ref, const PilotPose& pose, double dt_s);
   bool flying_reference() const { return state_ == PilotState::Trajectory || state_ == PilotState::Hold; }
 
